@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Every test, from a fresh Debian 12 machine: dependencies, configure, build, test — the
+# regular (dev) build and the sanitizer (ASan + UBSan) build.
+# Options: --fast   only tests labelled "fast" (skips slow sweeps and the browser suite)
+#          --preset P  only that preset (dev, sanitize or release)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+label_args=()
+presets=(dev sanitize)
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --fast) label_args=(-L fast) ;;
+    --preset) presets=("$2"); shift ;;
+    *) echo "usage: scripts/test.sh [--fast] [--preset dev|sanitize|release]"; exit 2 ;;
+  esac
+  shift
+done
+bash scripts/install-deps.sh
+[ -x scripts/install-node-deps.sh ] && bash scripts/install-node-deps.sh
+jobs=$(nproc)
+for preset in "${presets[@]}"; do
+  echo "=== $preset: configure and build"
+  cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs"
+  echo "=== $preset: test"
+  ctest --preset "$preset" "${label_args[@]}"
+done
