@@ -1,0 +1,26 @@
+// Prints the accuracy of every fixed-point function against long double as a markdown table:
+// max |err|, mean |err| and mean signed err in LSB of the output format, over the same input
+// sets as the tests (tests/fixedpoint/measure.hpp). Usage: accuracy_fixedpoint [filter]
+#include <cstdio>
+#include <string>
+
+#include "tests/fixedpoint/measure.hpp"
+#include "tests/fixedpoint/measure_trig.hpp"
+
+int main(int argc, char** argv) {
+  using namespace tp::fx::testing;
+  const std::string filter = argc > 1 ? argv[1] : "";
+  std::vector<Case> cases = arith_cases();
+  for (auto& c : vec_cases()) cases.push_back(std::move(c));
+  for (auto& c : trig_cases()) cases.push_back(std::move(c));
+  std::printf("| function | inputs | n | max abs err (LSB) | mean abs err (LSB) | mean err (LSB) |\n");
+  std::printf("|---|---|---:|---:|---:|---:|\n");
+  for (const auto& c : cases) {
+    if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
+    const ErrStats s = c.run();
+    std::printf("| `%s` | %s | %zu | %.7Lf | %.4Lf | %+.5Lf |\n", c.name.c_str(), c.inputs.c_str(),
+                s.n, s.max_abs, s.mean_abs(), s.mean());
+    std::fflush(stdout);
+  }
+  return 0;
+}

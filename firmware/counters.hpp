@@ -1,0 +1,34 @@
+// Performance counters, like a GPU's hardware counters (DESIGN §4). Reset by clear(), read by
+// the host at any time. Geometry and raster counters are filled by the pipeline; the work
+// counters are filled by the methods that define them (a method that does not use one leaves
+// it at zero).
+#pragma once
+
+#include <cstdint>
+
+namespace tp::fw {
+
+struct Counters {
+  // Geometry.
+  std::uint64_t triangles_in = 0;        // triangles submitted by draw
+  std::uint64_t triangles_culled = 0;    // removed by back-face culling
+  std::uint64_t triangles_clipped = 0;   // touched by a clip plane (near plane or guard band)
+  std::uint64_t triangles_rejected = 0;  // entirely outside a clip plane
+  std::uint64_t triangles_degenerate = 0;// zero area after snapping to 1/16 pixel
+  std::uint64_t triangles_drawn = 0;     // rasterized (after clipping: one per fan triangle)
+  std::uint64_t triangles_skipped = 0;   // a method's setup returned "skip"
+  // Raster.
+  std::uint64_t spans = 0;               // non-empty spans handed to a method
+  std::uint64_t pixels_shaded = 0;       // pixels a method computed
+  std::uint64_t pixels_written = 0;      // pixels that passed the depth test
+  // Per-method work.
+  std::uint64_t lighting_evaluations = 0;// full Blinn-Phong evaluations (vertex, centroid, pixel)
+  std::uint64_t specular_evaluations = 0;// pixels/points where a specular power was evaluated
+  std::uint64_t normalizations = 0;      // rsqrt renormalisations
+  std::uint64_t lights_skipped_triangle = 0;
+  std::uint64_t lights_skipped_span = 0;
+  std::uint64_t segments = 0;            // span segments (summed sections, Kuijk-Blake)
+  std::uint64_t frames = 0;              // end_frame calls since construction (not reset)
+};
+
+}  // namespace tp::fw

@@ -1,0 +1,431 @@
+// Typed commands: validation, memory layout, and the draw pipeline (transform -> clip ->
+// project -> cull -> rasterize -> shade -> depth test -> write).
+#include "firmware/device.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "firmware/raster.hpp"
+
+namespace tp::fw {
+namespace {
+
+constexpr std::size_t align8(std::size_t v) { return (v + 7) & ~std::size_t{7}; }
+
+bool coord_ok(q15_16 v) { return v.raw() >= -kMaxCoordRaw && v.raw() <= kMaxCoordRaw; }
+bool unit_ok(const Vec3u& v) {
+  const std::int64_t x = v.x.raw(), y = v.y.raw(), z = v.z.raw();
+  const std::int64_t d = x * x + y * y + z * z - (std::int64_t{1} << 60);  // < 3 * 2^60
+  return d >= -kUnitToleranceRaw && d <= kUnitToleranceRaw;
+}
+bool in_unit_interval(q1_30 v) { return v.raw() >= 0 && v.raw() <= q1_30::one().raw(); }
+
+Mat4 identity() {
+  Mat4 m{};
+  for (int i = 0; i < 4; ++i) m.m[i][i] = q15_16::one();
+  return m;
+}
+
+std::size_t bytes_per_pixel(PixelFormat f) { return f == PixelFormat::kRgb565 ? 2 : 3; }
+
+constexpr std::uint32_t kDepthFar = 0xffffffffu;
+
+// NDC z (Q.30, clamped to [-2, 2]) -> depth word: [-1, 1] -> [0, 2^32 - 1], saturating.
+std::uint32_t depth_word(std::int64_t z_q30) {
+  const std::int64_t d = (z_q30 + (std::int64_t{1} << 30)) * 2;
+  return d <= 0 ? 0u : (d >= std::int64_t{kDepthFar} ? kDepthFar : static_cast<std::uint32_t>(d));
+}
+
+}  // namespace
+
+// The span target of a draw: asks the method for the span's colours, then depth-tests and
+// writes them. Depth is interpolated linearly in screen space (NDC z is screen-affine).
+class PixelWriter final : public SpanTarget {
+ public:
+  PixelWriter(Device& d, const Triangle& t, ShadingMethod& m) : dev_(d), tri_(t), method_(m) {
+    zplane_.setup(t, t.v[0].z, t.v[1].z, t.v[2].z);
+  }
+  void span(const Span& s) override {
+    Counters& c = dev_.counters_;
+    const DeviceState& st = dev_.state_;
+    Rgb8* colours = dev_.region<Rgb8>(st.off_span);
+    method_.shade_span(s, colours);
+    ++c.spans;
+    c.pixels_shaded += static_cast<std::uint64_t>(s.x1 - s.x0);
+    const std::size_t w = st.viewport.width;
+    const std::size_t row = static_cast<std::size_t>(s.y) * w;
+    std::uint32_t* depth = dev_.region<std::uint32_t>(st.off_depth) + row;
+    std::uint8_t* counts =
+        st.viewport.write_count ? dev_.region<std::uint8_t>(st.off_counts) + row : nullptr;
+    const bool rgb565 = st.viewport.format == PixelFormat::kRgb565;
+    std::uint8_t* colour_row =
+        dev_.region<std::uint8_t>(st.off_colour) + row * bytes_per_pixel(st.viewport.format);
+    const Lambdas lam = lambdas_at(tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
+    constexpr int f = ScreenPlane::kStepFrac;
+    std::int64_t z = zplane_.at(lam) << f;
+    const std::int64_t dz = zplane_.step_x();
+    for (std::int32_t x = s.x0; x < s.x1; ++x, z += dz) {
+      const auto i = static_cast<std::size_t>(x);
+      const std::uint32_t d = depth_word(z >> f);
+      if (st.depth_test && !(d < depth[i])) continue;
+      depth[i] = d;
+      const Rgb8 px = colours[x - s.x0];
+      if (rgb565) {
+        // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
+        const auto v = static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
+        colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
+        colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
+      } else {
+        colour_row[3 * i] = px.r;
+        colour_row[3 * i + 1] = px.g;
+        colour_row[3 * i + 2] = px.b;
+      }
+      if (counts != nullptr && counts[i] != 0xff) ++counts[i];
+      ++c.pixels_written;
+    }
+  }
+
+ private:
+  Device& dev_;
+  const Triangle& tri_;
+  ShadingMethod& method_;
+  ScreenPlane zplane_;
+};
+
+Device::Device(std::span<std::byte> memory) {
+  // Align the block's start to 8 bytes; the layout offsets are relative to it.
+  const auto addr = reinterpret_cast<std::uintptr_t>(memory.data());
+  const std::size_t skip = std::min<std::size_t>((8 - (addr & 7)) & 7, memory.size());
+  mem_ = memory.subspan(skip);
+  state_.modelview = identity();
+  state_.projection = identity();
+  state_.shading.material.color[0] = state_.shading.material.color[1] =
+      state_.shading.material.color[2] = q1_30::one();
+  state_.shading.material.kd = q1_30::one();
+  state_.shading.counters = &counters_;
+  DeviceState s = state_;
+  if (layout(state_.viewport, state_.capacity, s)) state_ = s;
+}
+
+std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
+  const std::size_t pixels = std::size_t{vp.width} * vp.height;
+  std::size_t n = align8(std::size_t{cap.max_vertices} * sizeof(Vertex));
+  n += align8(std::size_t{cap.max_vertices} * sizeof(ClipVertex));
+  n += align8(std::size_t{cap.max_indices} * sizeof(std::uint32_t));
+  n += align8(pixels * bytes_per_pixel(vp.format));
+  n += align8(pixels * sizeof(std::uint32_t));
+  if (vp.write_count) n += align8(pixels);
+  n += align8(kMaxDimension * sizeof(Rgb8));
+  return n;
+}
+
+bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const {
+  // Capacities are bounded so that the sizes below cannot wrap a 32-bit size_t either.
+  if (cap.max_vertices > (1u << 24) || cap.max_indices > (1u << 26)) return false;
+  if (memory_required(vp, cap) > mem_.size()) return false;
+  const std::size_t pixels = std::size_t{vp.width} * vp.height;
+  std::size_t o = 0;
+  s.off_vertices = o;
+  o += align8(std::size_t{cap.max_vertices} * sizeof(Vertex));
+  s.off_cache = o;
+  o += align8(std::size_t{cap.max_vertices} * sizeof(ClipVertex));
+  s.off_indices = o;
+  o += align8(std::size_t{cap.max_indices} * sizeof(std::uint32_t));
+  s.off_colour = o;
+  o += align8(pixels * bytes_per_pixel(vp.format));
+  s.off_depth = o;
+  o += align8(pixels * sizeof(std::uint32_t));
+  s.off_counts = o;
+  if (vp.write_count) o += align8(pixels);
+  s.off_span = o;
+  o += align8(kMaxDimension * sizeof(Rgb8));
+  s.end = o;
+  s.viewport = vp;
+  s.capacity = cap;
+  return true;
+}
+
+Error Device::set_viewport(const ViewportCmd& cmd) {
+  if (cmd.width == 0 || cmd.height == 0 || cmd.width > kMaxDimension || cmd.height > kMaxDimension)
+    return fail(Error::kViewportTooLarge);
+  if (cmd.format != PixelFormat::kRgb888 && cmd.format != PixelFormat::kRgb565)
+    return fail(Error::kBadArgument);
+  DeviceState s = state_;
+  if (!layout(cmd, state_.capacity, s)) return fail(Error::kOutOfMemory);
+  state_ = s;
+  state_.viewport_set = true;
+  clear_regions(Rgb8{0, 0, 0});
+  return ok();
+}
+
+Error Device::set_buffer_capacity(const BufferCapacityCmd& cmd) {
+  DeviceState s = state_;
+  if (!layout(state_.viewport, cmd, s)) return fail(Error::kOutOfMemory);
+  s.vertex_count = 0;
+  s.index_count = 0;
+  state_ = s;
+  if (state_.viewport_set) clear_regions(Rgb8{0, 0, 0});  // the framebuffer moved
+  return ok();
+}
+
+Error Device::set_modelview(const Mat4& m) {
+  for (const auto& col : m.m)
+    for (const q15_16 v : col)
+      if (!coord_ok(v)) return fail(Error::kOutOfRange);
+  state_.modelview = m;
+  return ok();
+}
+
+Error Device::set_projection(const Mat4& m) {
+  for (const auto& col : m.m)
+    for (const q15_16 v : col)
+      if (!coord_ok(v)) return fail(Error::kOutOfRange);
+  state_.projection = m;
+  return ok();
+}
+
+Error Device::set_eye(EyeMode mode) {
+  if (mode != EyeMode::kFinite && mode != EyeMode::kInfinite) return fail(Error::kBadArgument);
+  state_.shading.eye = mode;
+  return ok();
+}
+
+Error Device::set_material(const MaterialCmd& cmd) {
+  for (const q1_30 c : cmd.color)
+    if (!in_unit_interval(c)) return fail(Error::kOutOfRange);
+  if (!in_unit_interval(cmd.ka) || !in_unit_interval(cmd.kd) || !in_unit_interval(cmd.ks))
+    return fail(Error::kOutOfRange);
+  if (cmd.n < 1 || cmd.n > kMaxExponent) return fail(Error::kOutOfRange);
+  // (a, b): both unset (0), or 0 <= a < b <= pi/2 (pi/2 = 843314857 / 2^29, rounded).
+  constexpr std::int32_t half_pi = 843314857;
+  const bool unset = cmd.a.raw() == 0 && cmd.b.raw() == 0;
+  if (!unset && !(cmd.a.raw() >= 0 && cmd.a < cmd.b && cmd.b.raw() <= half_pi))
+    return fail(Error::kOutOfRange);
+  state_.shading.material = cmd;
+  return ok();
+}
+
+Error Device::set_light(const LightCmd& cmd) {
+  if (cmd.index >= kMaxLights) return fail(Error::kTooManyLights);
+  if (cmd.type != LightType::kOff && cmd.type != LightType::kDirectional &&
+      cmd.type != LightType::kPoint)
+    return fail(Error::kBadArgument);
+  LightState l;
+  l.type = cmd.type;
+  if (cmd.type != LightType::kOff) {
+    for (const q15_16 c : cmd.color)
+      if (c.raw() < 0 || c.raw() > kMaxIntensityRaw) return fail(Error::kOutOfRange);
+    for (int c = 0; c < 3; ++c) l.color[c] = cmd.color[c];
+  }
+  if (cmd.type == LightType::kDirectional) {
+    if (!unit_ok(cmd.direction)) return fail(Error::kNotUnit);
+    l.direction = cmd.direction;
+  }
+  if (cmd.type == LightType::kPoint) {
+    if (!coord_ok(cmd.position.x) || !coord_ok(cmd.position.y) || !coord_ok(cmd.position.z))
+      return fail(Error::kOutOfRange);
+    l.position = cmd.position;
+  }
+  state_.shading.lights[cmd.index] = l;
+  return ok();
+}
+
+Error Device::set_method(Method m) {
+  // Only implemented methods; the reserved ids of types.hpp are refused until they exist.
+  if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong)
+    return fail(Error::kUnknownMethod);
+  state_.method = m;
+  return ok();
+}
+
+Error Device::set_culling(bool on) {
+  state_.cull_back_faces = on;
+  return ok();
+}
+
+Error Device::set_depth_test(bool on) {
+  state_.depth_test = on;
+  return ok();
+}
+
+Error Device::validate_vertex(const Vertex& v) {
+  if (!coord_ok(v.position.x) || !coord_ok(v.position.y) || !coord_ok(v.position.z))
+    return Error::kOutOfRange;
+  return unit_ok(v.normal) ? Error::kOk : Error::kNotUnit;
+}
+
+Error Device::upload_vertices(std::uint32_t first, std::span<const Vertex> vertices) {
+  const std::uint64_t end = std::uint64_t{first} + vertices.size();
+  if (end > state_.capacity.max_vertices) return fail(Error::kIndexOutOfRange);
+  for (const Vertex& v : vertices) {
+    const Error e = validate_vertex(v);
+    if (e != Error::kOk) return fail(e);
+  }
+  if (!vertices.empty())
+    std::memcpy(region<Vertex>(state_.off_vertices) + first, vertices.data(), vertices.size_bytes());
+  if (end > state_.vertex_count) state_.vertex_count = static_cast<std::uint32_t>(end);
+  return ok();
+}
+
+Error Device::upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices) {
+  const std::uint64_t end = std::uint64_t{first} + indices.size();
+  if (end > state_.capacity.max_indices) return fail(Error::kIndexOutOfRange);
+  if (!indices.empty())
+    std::memcpy(region<std::uint32_t>(state_.off_indices) + first, indices.data(), indices.size_bytes());
+  if (end > state_.index_count) state_.index_count = static_cast<std::uint32_t>(end);
+  return ok();
+}
+
+void Device::clear_regions(Rgb8 colour) {
+  const DeviceState& s = state_;
+  const std::size_t pixels = std::size_t{s.viewport.width} * s.viewport.height;
+  std::uint8_t* c = region<std::uint8_t>(s.off_colour);
+  if (s.viewport.format == PixelFormat::kRgb565) {
+    const auto v = static_cast<std::uint16_t>(((colour.r >> 3) << 11) | ((colour.g >> 2) << 5) | (colour.b >> 3));
+    for (std::size_t i = 0; i < pixels; ++i) {
+      c[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
+      c[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
+    }
+  } else {
+    for (std::size_t i = 0; i < pixels; ++i) {
+      c[3 * i] = colour.r;
+      c[3 * i + 1] = colour.g;
+      c[3 * i + 2] = colour.b;
+    }
+  }
+  std::uint32_t* z = region<std::uint32_t>(s.off_depth);
+  for (std::size_t i = 0; i < pixels; ++i) z[i] = kDepthFar;
+  if (s.viewport.write_count) std::memset(region<std::uint8_t>(s.off_counts), 0, pixels);
+}
+
+Error Device::clear(Rgb8 colour) {
+  if (!state_.viewport_set) return fail(Error::kNoViewport);
+  clear_regions(colour);
+  const std::uint64_t frames = counters_.frames;
+  counters_ = Counters{};
+  counters_.frames = frames;
+  return ok();
+}
+
+Error Device::end_frame() {
+  ++counters_.frames;
+  return ok();
+}
+
+ShadingMethod& Device::method() {
+  switch (state_.method) {
+    case Method::kFlat: return flat_;
+    case Method::kPhong: return phong_;
+    default: return gouraud_;
+  }
+}
+
+Error Device::draw(const DrawCmd& cmd) {
+  if (!state_.viewport_set) return fail(Error::kNoViewport);
+  if (cmd.count % 3 != 0) return fail(Error::kBadArgument);
+  if (std::uint64_t{cmd.first} + cmd.count > state_.index_count) return fail(Error::kIndexOutOfRange);
+  const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
+  for (std::uint32_t i = 0; i < cmd.count; ++i)
+    if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
+  // Validate every transform before touching memory (a failing draw changes nothing), then
+  // fill the vertex cache.
+  const Vertex* verts = region<Vertex>(state_.off_vertices);
+  ClipVertex* cache = region<ClipVertex>(state_.off_cache);
+  for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
+    ClipVertex tmp;
+    if (!transform_vertex(state_.modelview, state_.projection, verts[i], tmp))
+      return fail(Error::kOutOfRange);
+  }
+  for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
+    (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
+  for (std::uint32_t t = 0; t < cmd.count; t += 3) {
+    const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
+    draw_triangle(tri);
+  }
+  return ok();
+}
+
+void Device::draw_triangle(const ClipVertex tri[3]) {
+  ++counters_.triangles_in;
+  ClipVertex poly[kMaxClipVertices];
+  const ClipResult cr = clip_triangle(tri, poly);
+  if (cr.count == 0) {
+    ++counters_.triangles_rejected;
+    return;
+  }
+  if (cr.clipped) ++counters_.triangles_clipped;
+  const auto w = static_cast<std::int32_t>(state_.viewport.width);
+  const auto h = static_cast<std::int32_t>(state_.viewport.height);
+  ShadeVertex sv[kMaxClipVertices];
+  for (int i = 0; i < cr.count; ++i) sv[i] = project(poly[i], w, h);
+  // Facing of an unclipped triangle: its snapped screen area, front = clockwise on screen
+  // (y down) = negative edge function here. For a clipped triangle the exact homogeneous determinant decides instead: the snapped
+  // pieces of a zero-area or sliver triangle could otherwise come out with either orientation.
+  // det[x y w] > 0 is counter-clockwise in NDC (y up), i.e. clockwise on screen: front.
+  bool front = false;
+  if (cr.clipped) {
+    const int o = homogeneous_orientation(tri);
+    if (o == 0) {
+      ++counters_.triangles_degenerate;
+      return;
+    }
+    front = o > 0;
+  } else {
+    const std::int64_t area2 = edge_function(sv[0], sv[1], sv[2].sx, sv[2].sy);
+    if (area2 == 0) {
+      ++counters_.triangles_degenerate;
+      return;
+    }
+    front = area2 < 0;
+  }
+  if (!front && state_.cull_back_faces) {
+    ++counters_.triangles_culled;
+    return;
+  }
+  for (int i = 1; i + 1 < cr.count; ++i) draw_fan_triangle(sv[0], sv[i], sv[i + 1], front);
+}
+
+void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
+                               bool front) {
+  const std::int64_t area2 = edge_function(a, b, c.sx, c.sy);
+  // A fan piece whose orientation disagrees with the polygon's is a snapping artefact.
+  if (area2 == 0 || (area2 < 0) != front) {
+    ++counters_.triangles_degenerate;
+    return;
+  }
+  // The rasterizer and the methods work with area2 > 0: order the vertices accordingly.
+  Triangle t;
+  t.front_facing = front;
+  t.v[0] = a;
+  t.v[1] = area2 > 0 ? b : c;
+  t.v[2] = area2 > 0 ? c : b;
+  t.area2 = area2 > 0 ? area2 : -area2;
+  ShadingMethod& m = method();
+  if (!m.setup(t, state_.shading)) {
+    ++counters_.triangles_skipped;
+    return;
+  }
+  ++counters_.triangles_drawn;
+  PixelWriter writer(*this, t, m);
+  (void)rasterize(t, static_cast<std::int32_t>(state_.viewport.width),
+                  static_cast<std::int32_t>(state_.viewport.height), writer);
+}
+
+FramebufferView Device::framebuffer() const {
+  if (!state_.viewport_set) return FramebufferView{};
+  const auto bpp = static_cast<std::uint32_t>(bytes_per_pixel(state_.viewport.format));
+  return FramebufferView{region<std::uint8_t>(state_.off_colour), state_.viewport.width,
+                         state_.viewport.height, state_.viewport.width * bpp,
+                         state_.viewport.format};
+}
+
+const std::uint32_t* Device::depth_buffer() const {
+  return state_.viewport_set ? region<std::uint32_t>(state_.off_depth) : nullptr;
+}
+
+const std::uint8_t* Device::write_counts() const {
+  return state_.viewport_set && state_.viewport.write_count ? region<std::uint8_t>(state_.off_counts)
+                                                            : nullptr;
+}
+
+}  // namespace tp::fw

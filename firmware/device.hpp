@@ -1,0 +1,152 @@
+// The emulated device: a tiny display GPU driven by typed calls or by a command stream.
+//
+// Every command is validated. A command that fails returns its Error (also kept in
+// last_error()) and changes nothing: neither the DeviceState nor any byte of device memory.
+// A command that succeeds sets last_error() to kOk.
+//
+// Memory: the device runs entirely in the caller's block (no heap). Layout, each region
+// 8-byte aligned, in this order (so that a viewport change keeps the uploaded buffers):
+//   vertices   max_vertices x Vertex          (uploaded data)
+//   cache      max_vertices x ClipVertex      (per-draw transformed vertices)
+//   indices    max_indices  x uint32
+//   colour     width x height x 3 (RGB888) or 2 (RGB565, little-endian 5:6:5)
+//   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
+//   counts     width x height x uint8         (only if ViewportCmd::write_count)
+//   span       kMaxDimension x Rgb8           (a method's output for one span)
+// memory_required() gives the size for a configuration.
+//
+// Depth buffer: 32-bit. NDC z in [-1, 1] maps to [0, 2^32 - 1]; 16 bits would leave a
+// perspective camera with far/near = 1000 less than one depth step per 1/1000 of the depth
+// range near the far plane (z-fighting on the teapot), and the 4096^2 budget is dominated by
+// the colour buffer anyway.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "firmware/counters.hpp"
+#include "firmware/geometry.hpp"
+#include "firmware/method.hpp"
+#include "firmware/methods.hpp"
+#include "firmware/types.hpp"
+
+namespace tp::fw {
+
+// Everything a command can change, apart from the memory block and the counters.
+// Trivially copyable: tests byte-compare it across failing commands.
+struct DeviceState {
+  bool viewport_set = false;
+  ViewportCmd viewport;
+  BufferCapacityCmd capacity;
+  Mat4 modelview;   // identity after construction
+  Mat4 projection;  // identity after construction
+  ShadeContext shading;  // material, lights, eye (counters pointer set by the device)
+  Method method = Method::kGouraud;
+  bool cull_back_faces = true;
+  bool depth_test = true;
+  std::uint32_t vertex_count = 0;  // vertices uploaded so far (high-water mark)
+  std::uint32_t index_count = 0;
+  // Region offsets into the memory block (see the layout above).
+  std::size_t off_vertices = 0, off_cache = 0, off_indices = 0, off_colour = 0, off_depth = 0,
+              off_counts = 0, off_span = 0, end = 0;
+};
+
+struct FramebufferView {
+  const std::uint8_t* data = nullptr;  // row 0 first
+  std::uint32_t width = 0, height = 0;
+  std::uint32_t stride = 0;            // bytes per row
+  PixelFormat format = PixelFormat::kRgb888;
+};
+
+// Command stream (execute): a sequence of commands, each a header word
+// (opcode | payload_words << 16) followed by its payload. Payload layouts (all words are
+// uint32; Q values are their raw two's-complement bits):
+enum class Opcode : std::uint16_t {
+  kSetViewport = 1,       // width, height, format, write_count(0/1)                    4
+  kSetBufferCapacity = 2, // max_vertices, max_indices                                  2
+  kSetModelView = 3,      // 16 Q15.16, column-major m[col][row]                        16
+  kSetProjection = 4,     // 16 Q15.16, column-major                                    16
+  kSetEye = 5,            // EyeMode                                                    1
+  kSetMaterial = 6,       // r g b ka kd ks (q1_30), n, a b (q2_29)                     9
+  kSetLight = 7,          // index, type, r g b (Q15.16), dx dy dz (q1_30), px py pz    11
+  kSetMethod = 8,         // Method                                                     1
+  kSetCulling = 9,        // 0 / 1                                                      1
+  kSetDepthTest = 10,     // 0 / 1                                                      1
+  kUploadVertices = 11,   // first, count, count x (px py pz Q15.16, nx ny nz q1_30)    2 + 6 count
+  kUploadIndices = 12,    // first, count, count x index                               2 + count
+  kClear = 13,            // 0x00RRGGBB                                                 1
+  kDraw = 14,             // first, count                                               2
+  kEndFrame = 15,         //                                                            0
+};
+inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_words) {
+  return static_cast<std::uint32_t>(op) | (payload_words << 16);
+}
+
+class Device {
+ public:
+  explicit Device(std::span<std::byte> memory);
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  static std::size_t memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap);
+
+  // Typed commands.
+  Error set_viewport(const ViewportCmd& cmd);
+  Error set_buffer_capacity(const BufferCapacityCmd& cmd);  // empties both buffers
+  Error set_modelview(const Mat4& m);
+  Error set_projection(const Mat4& m);
+  Error set_eye(EyeMode mode);
+  Error set_material(const MaterialCmd& cmd);
+  Error set_light(const LightCmd& cmd);
+  Error set_method(Method m);
+  Error set_culling(bool on);
+  Error set_depth_test(bool on);
+  Error upload_vertices(std::uint32_t first, std::span<const Vertex> vertices);
+  Error upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);
+  Error clear(Rgb8 colour);  // colour, depth = far, counts = 0, counters reset (not frames)
+  Error draw(const DrawCmd& cmd);
+  Error end_frame();
+
+  // Decodes and runs commands in order; stops at the first failing command (earlier ones stay
+  // applied) and returns its error. words_consumed() tells how far it got.
+  Error execute(std::span<const std::uint32_t> words);
+  std::size_t words_consumed() const { return consumed_; }
+
+  // Read-back.
+  Error last_error() const { return last_error_; }
+  const DeviceState& state() const { return state_; }
+  const Counters& counters() const { return counters_; }
+  FramebufferView framebuffer() const;
+  const std::uint32_t* depth_buffer() const;  // nullptr before set_viewport
+  const std::uint8_t* write_counts() const;   // nullptr unless enabled: writes per pixel
+                                              // since clear, saturating at 255
+
+ private:
+  friend class PixelWriter;
+  Error fail(Error e) { return last_error_ = e; }
+  Error ok() { return last_error_ = Error::kOk; }
+  bool layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const;
+  void clear_regions(Rgb8 colour);
+  ShadingMethod& method();
+  template <class T>
+  T* region(std::size_t off) const {
+    return reinterpret_cast<T*>(mem_.data() + off);
+  }
+  void draw_triangle(const ClipVertex tri[3]);
+  void draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
+                         bool front);
+  Error execute_one(Opcode op, std::span<const std::uint32_t> p);
+  static Error validate_vertex(const Vertex& v);
+
+  std::span<std::byte> mem_;
+  DeviceState state_;
+  Counters counters_;
+  Error last_error_ = Error::kOk;
+  std::size_t consumed_ = 0;
+  FlatMethod flat_;
+  GouraudMethod gouraud_;
+  PhongMethod phong_;
+};
+
+}  // namespace tp::fw

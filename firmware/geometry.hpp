@@ -1,0 +1,53 @@
+// Vertex transform, homogeneous clipping and projection (docs/CONVENTIONS.md).
+//
+// Formats: matrices, positions, eye and clip coordinates are Q15.16 (int32); normals q1_30.
+// Input bound (checked by the device): matrix entries and vertex coordinates below 2^14 in
+// magnitude, so each raw product is below 2^60 and a four-term sum below 2^62. Transformed
+// eye and clip coordinates that do not fit Q15.16 make transform_vertex fail (the draw is
+// refused before any pixel is written).
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/method.hpp"
+#include "firmware/types.hpp"
+
+namespace tp::fw {
+
+// A transformed vertex before projection (the per-draw vertex cache holds these).
+struct ClipVertex {
+  std::int32_t clip[4] = {0, 0, 0, 0};  // Q15.16 raw: x, y, z, w
+  Vec3q16 eye;
+  Vec3u normal;  // unit, eye space
+};
+
+// MV * position and P * (MV * position); the normal by MV's upper 3x3, renormalised
+// (rigid motion + uniform scale assumed). False if a result does not fit Q15.16.
+bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out);
+
+// Clip planes, in homogeneous space (before the divide): the near plane z >= -w, w >= 2^-12,
+// and a guard band |x| <= 64 w, |y| <= 64 w that bounds screen coordinates (raster.hpp) without
+// touching anything inside the viewport.
+inline constexpr int kClipPlanes = 6;
+inline constexpr int kMaxClipVertices = 3 + kClipPlanes;
+inline constexpr std::int32_t kGuardBand = 64;
+
+struct ClipResult {
+  int count = 0;         // vertices of the clipped convex polygon (0: rejected)
+  bool clipped = false;  // some plane cut the triangle
+};
+// Sutherland-Hodgman. An edge is always cut from its inside endpoint towards its outside one,
+// so two triangles sharing an edge produce bit-identical new vertices (no cracks).
+ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]);
+
+// Exact sign of det[x y w] of the three clip-space vertices (-1, 0, 1): the orientation of
+// the triangle's projection, valid whatever the signs of w (the volume of the tetrahedron
+// eye-triangle). Used for triangles that need clipping, whose snapped pieces cannot decide
+// facing or zero area reliably.
+int homogeneous_orientation(const ClipVertex v[3]);
+
+// Divide by w and map to the viewport, snapping to 1/16 pixel (round to nearest, ties away
+// from zero): sx = (x/w + 1) / 2 * 16 W, sy = (1 - y/w) / 2 * 16 H.
+ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height);
+
+}  // namespace tp::fw

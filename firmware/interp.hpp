@@ -1,0 +1,113 @@
+// Interpolation helpers shared by the methods: screen-linear planes (what the 1980s methods
+// assume, DESIGN §5) and perspective-correct (hyperbolic) barycentrics (what the double
+// reference uses). Both are exact-integer at their core: the edge functions are exact, and each
+// result is rounded once.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "firmware/method.hpp"
+#include "fixedpoint/arith.hpp"
+
+namespace tp::fw {
+
+using I62 = fx::Q<62, 0, std::int64_t>;  // a plain 64-bit integer as a Q, for fx::div
+
+// Shift that brings a non-negative magnitude below 2^bits.
+constexpr int shift_to_fit(std::uint64_t mag, int bits) {
+  const int w = static_cast<int>(std::bit_width(mag));
+  return w > bits ? w - bits : 0;
+}
+
+// Edge-function weights of the three vertices at subpixel (px, py): lambda_i * area2, exact.
+struct Lambdas {
+  std::int64_t l[3];
+};
+constexpr Lambdas lambdas_at(const Triangle& t, std::int64_t px, std::int64_t py) {
+  return Lambdas{{edge_function(t.v[1], t.v[2], px, py), edge_function(t.v[2], t.v[0], px, py),
+                  edge_function(t.v[0], t.v[1], px, py)}};
+}
+// Their exact change per pixel step in x (+16 subpixels): dE_ab/dpx = -(b.sy - a.sy).
+constexpr Lambdas lambdas_step_x(const Triangle& t) {
+  return Lambdas{{16 * (std::int64_t{t.v[1].sy} - t.v[2].sy),
+                  16 * (std::int64_t{t.v[2].sy} - t.v[0].sy),
+                  16 * (std::int64_t{t.v[0].sy} - t.v[1].sy)}};
+}
+
+// A value given at the three vertices, interpolated linearly in screen space.
+// Values: any fixed-point format with |v| <= 2^33. at() is exact to 2^-27 of the largest
+// vertex difference (lambdas are cut to 27 bits so the products stay below 2^62) for points
+// inside the triangle. step_x() is the per-pixel x increment with 16 extra fraction bits,
+// saturated to |g| <= 2^48: a span of n >= 2 pixels inside the triangle has |g| (n - 1) <= the
+// vertex range, so saturation only touches one-pixel spans, where the step is never used, and
+// an accumulator start (<= 2^49) plus 4096 steps stays below 2^61.
+class ScreenPlane {
+ public:
+  static constexpr int kStepFrac = 16;
+  using Step = fx::Q<32, kStepFrac, std::int64_t>;
+
+  void setup(const Triangle& t, std::int64_t v0, std::int64_t v1, std::int64_t v2) {
+    v0_ = v0;
+    d1_ = v1 - v0;
+    d2_ = v2 - v0;
+    shift_ = shift_to_fit(static_cast<std::uint64_t>(t.area2), 27);
+    area_ = t.area2 >> shift_;
+    // dv/dpx = (d1 (y2 - y0) + d2 (y0 - y1)) / area2, times 16 subpixels per pixel.
+    const std::int64_t num = d1_ * (std::int64_t{t.v[2].sy} - t.v[0].sy) +
+                             d2_ * (std::int64_t{t.v[0].sy} - t.v[1].sy);
+    step_ = fx::div<Step>(fx::Q<62, 0, std::int64_t>::from_raw(num),
+                          fx::Q<58, 4, std::int64_t>::from_raw(t.area2))
+                .raw();
+  }
+  std::int64_t at(const Lambdas& lam) const {
+    const std::int64_t l1 = clamp27(lam.l[1] >> shift_), l2 = clamp27(lam.l[2] >> shift_);
+    const std::int64_t num = l1 * d1_ + l2 * d2_;
+    return v0_ + fx::div<I62>(I62::from_raw(num), I62::from_raw(area_)).raw();
+  }
+  std::int64_t step_x() const { return step_; }
+
+ private:
+  static constexpr std::int64_t clamp27(std::int64_t v) {
+    constexpr std::int64_t lim = std::int64_t{1} << 27;
+    return v < -lim ? -lim : (v > lim ? lim : v);
+  }
+  std::int64_t v0_ = 0, d1_ = 0, d2_ = 0, area_ = 1, step_ = 0;
+  int shift_ = 0;
+};
+
+// Perspective-correct barycentrics: b_i = (lambda_i / w_i) / sum_j (lambda_j / w_j), Q1.30.
+// Per triangle: r_i = w_min / w_i in (0, 1] (Q1.30). Per point: mu_i = lambda_i' r_i with the
+// lambdas cut to 28 bits (mu_i < 2^58), then each b_i rounded once by fx::div.
+class PerspectiveBary {
+ public:
+  void setup(const Triangle& t) {
+    q15_16 wmin = t.v[0].w;
+    for (const auto& v : t.v) wmin = v.w < wmin ? v.w : wmin;
+    for (int i = 0; i < 3; ++i) r_[i] = fx::div<q1_30>(wmin, t.v[i].w).raw();
+    shift_ = shift_to_fit(static_cast<std::uint64_t>(t.area2), 28);
+  }
+  // Weights of the three vertices at a point with edge weights lam (all >= 0 inside).
+  void at(const Lambdas& lam, q1_30 b[3]) const {
+    std::int64_t mu[3];
+    std::int64_t sum = 0;
+    for (int i = 0; i < 3; ++i) {
+      const std::int64_t l = lam.l[i] < 0 ? 0 : (lam.l[i] >> shift_);
+      mu[i] = (l > kLim ? kLim : l) * r_[i];
+      sum += mu[i];
+    }
+    if (sum == 0) {  // cannot happen inside a triangle of positive area; stay defined anyway
+      b[0] = q1_30::one();
+      b[1] = b[2] = q1_30::zero();
+      return;
+    }
+    for (int i = 0; i < 3; ++i) b[i] = fx::div<q1_30>(I62::from_raw(mu[i]), I62::from_raw(sum));
+  }
+
+ private:
+  static constexpr std::int64_t kLim = std::int64_t{1} << 28;
+  std::int64_t r_[3] = {0, 0, 0};
+  int shift_ = 0;
+};
+
+}  // namespace tp::fw

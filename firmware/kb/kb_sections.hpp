@@ -1,0 +1,214 @@
+// Summed quadratic sections (Kuijk-Blake section 2, last paragraphs; DESIGN §7): every term
+// (a light's diffuse or specular f along the span, times its per-channel weight) is a
+// piecewise quadratic in x with break points where φ crosses ±a, ±b. Their sum is again
+// piecewise quadratic with the union of the break points, so the whole span is ONE
+// forward-differenced quadratic per colour channel: two additions per channel per pixel plus
+// one comparison per merged segment, whatever the number of lights.
+//
+// Exactness: each term's pieces come from cosn::make_segments (Q.40 states, exact integer
+// polynomials per piece). At a term's break point the running sum receives
+// cosn::jump(prev, next) = next.state − prev.state advanced to next.x, so at every pixel the
+// running state equals the sum of the terms' direct evaluations, bit for bit (tested over
+// spans of 4,096 pixels in tests/kb/test_kb_sections.cpp).
+//
+// Units: a channel's value v (Q.40) is 255·I/4096, so the output level round(255·I) is
+// round(v / 2^28), a shift: the per-term scale Il_c·k·O_c·f(s)·255/4096 <= 16·255/4096 < 1
+// fits cosn's q1_30 scale. Sum bound: 16 lights × 2 terms × 2^40 < 2^45 for the value; the
+// differences are bounded per term in cosn_fd.hpp and checked here (kSafeBound) — a span whose
+// terms could overflow the sum is evaluated pixel by pixel from the direct evaluations instead.
+//
+// Skipping: a segment where every term sits on a zero piece (|φ| >= b) has exactly the
+// ambient state (zero pieces have zero state, and the running sum is exact), so it is filled
+// with the ambient colour without stepping — bit-identical to stepping it.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/cosn_fd.hpp"
+#include "firmware/types.hpp"
+
+namespace tp::fw::kb {
+
+inline constexpr int kMaxTerms = 2 * static_cast<int>(kMaxLights);
+inline constexpr int kLevelShift = cosn::kStateFrac - 12;  // v = 255·I / 2^12 in Q.40
+// Per-term magnitude budget: 32 terms of at most 2^57 each stay below 2^62.
+inline constexpr std::int64_t kSafeBound = std::int64_t{1} << 57;
+
+// 255·I in Q.40 units of 1/4096 -> 8-bit level: clamp(round(v / 2^28), 0, 255).
+constexpr std::uint8_t level_of(std::int64_t v) {
+  if (v <= 0) return 0;
+  const std::int64_t l = (v + (std::int64_t{1} << (kLevelShift - 1))) >> kLevelShift;
+  return static_cast<std::uint8_t>(l > 255 ? 255 : l);
+}
+
+// One term's pieces on the span, per channel (the break points do not depend on the scale, so
+// the three channels share x and piece).
+struct TermSegments {
+  cosn::CosnSegment seg[3][cosn::kMaxSegments];
+  int count = 0;
+};
+
+constexpr bool is_zero_piece(int piece) { return piece == 0 || piece == 4; }
+
+class SpanSections {
+ public:
+  struct Stats {
+    std::uint32_t segments = 0;       // merged segments evaluated (or filled)
+    std::uint32_t ambient_pixels = 0; // pixels filled without evaluation
+    bool direct = false;              // fell back to direct evaluation (overflow guard)
+  };
+
+  // A span of `length` pixels (1..4096) whose constant part is ambient[c] (Q.40, 255·I/4096).
+  constexpr void begin(int length, const std::int64_t ambient[3]) {
+    length_ = length;
+    count_ = 0;
+    terms_count_ = 0;
+    safe_ = true;
+    for (int c = 0; c < 3; ++c) ambient_[c] = ambient[c];
+  }
+
+  // The next term's storage, filled in place by the caller (cosn::make_segments per
+  // channel), then taken into the sum by commit(). At most kMaxTerms terms per span.
+  constexpr TermSegments& next_term() { return terms_[terms_count_]; }
+  constexpr void commit() {
+    const TermSegments& t = terms_[terms_count_++];
+    for (int i = 0; i < t.count; ++i) {
+      Event& e = events_[count_++];
+      e.x = t.seg[0][i].x;
+      const bool now = !is_zero_piece(t.seg[0][i].piece);
+      const bool before = i > 0 && !is_zero_piece(t.seg[0][i - 1].piece);
+      e.active = (now ? 1 : 0) - (before ? 1 : 0);
+      for (int c = 0; c < 3; ++c) {
+        safe_ = safe_ && bounded(t.seg[c][i].st);
+        e.d[c] = i == 0 ? t.seg[c][0].st : cosn::jump(t.seg[c][i - 1], t.seg[c][i]);
+      }
+    }
+  }
+  constexpr int terms() const { return terms_count_; }
+
+  // Writes the span's colours; returns what it did (for the counters).
+  constexpr Stats evaluate(Rgb8* out, bool skip_zero_segments) {
+    if (!safe_) {
+      for (int x = 0; x < length_; ++x) out[x] = direct_pixel(x);
+      return Stats{1, 0, true};
+    }
+    return run(LevelSink{out}, skip_zero_segments);
+  }
+
+  // The running Q.40 values per pixel (tests: bit-exactness of the forward differencing).
+  constexpr Stats evaluate_raw(std::int64_t* r, std::int64_t* g, std::int64_t* b) {
+    return run(RawSink{r, g, b}, false);
+  }
+
+  // Direct evaluation of the summed polynomial of channel c at pixel x (Q.40): the ambient
+  // plus every term's own polynomial at x (tests; the overflow fallback).
+  constexpr std::int64_t direct_raw(int x, int c) const {
+    std::int64_t v = ambient_[c];
+    for (int j = 0; j < terms_count_; ++j) v += cosn::eval_at(terms_[j].seg[c], terms_[j].count, x);
+    return v;
+  }
+  constexpr Rgb8 direct_pixel(int x) const {
+    return Rgb8{level_of(direct_raw(x, 0)), level_of(direct_raw(x, 1)), level_of(direct_raw(x, 2))};
+  }
+
+ private:
+  struct Event {
+    std::int32_t x = 0;
+    std::int32_t active = 0;  // change in the number of terms on a non-zero piece
+    cosn::QuadState d[3];
+  };
+
+  static constexpr std::int64_t mag(std::int64_t v) { return v < 0 ? -v : v; }
+  static constexpr bool bounded(const cosn::QuadState& s) {
+    return mag(s.v) < kSafeBound && mag(s.d1) < kSafeBound && mag(s.d2) < kSafeBound;
+  }
+
+  struct LevelSink {
+    Rgb8* out;
+    constexpr void put(int x, std::int64_t r, std::int64_t g, std::int64_t b) const {
+      out[x] = Rgb8{level_of(r), level_of(g), level_of(b)};
+    }
+    constexpr void fill(int x, int end, const std::int64_t v[3]) const {
+      const Rgb8 c{level_of(v[0]), level_of(v[1]), level_of(v[2])};
+      for (; x < end; ++x) out[x] = c;
+    }
+  };
+  struct RawSink {
+    std::int64_t *r, *g, *b;
+    constexpr void put(int x, std::int64_t vr, std::int64_t vg, std::int64_t vb) const {
+      r[x] = vr, g[x] = vg, b[x] = vb;
+    }
+    constexpr void fill(int x, int end, const std::int64_t v[3]) const {
+      for (; x < end; ++x) put(x, v[0], v[1], v[2]);
+    }
+  };
+
+  template <class Sink>
+  constexpr Stats run(const Sink& sink, bool skip_zero_segments) {
+    Stats stats;
+    sort_events();
+    cosn::QuadState acc[3];
+    for (int c = 0; c < 3; ++c) acc[c] = {ambient_[c], 0, 0};
+    int active = 0, i = 0, x = 0;
+    while (x < length_) {
+      for (; i < count_ && events_[i].x <= x; ++i) {  // break points at x: change the sum
+        active += events_[i].active;
+        for (int c = 0; c < 3; ++c) {
+          acc[c].v += events_[i].d[c].v;
+          acc[c].d1 += events_[i].d[c].d1;
+          acc[c].d2 += events_[i].d[c].d2;
+        }
+      }
+      const int end = i < count_ && events_[i].x < length_ ? events_[i].x : length_;
+      ++stats.segments;
+      if (active == 0 && skip_zero_segments) {
+        // Every term is on a zero piece: the state is exactly (ambient, 0, 0).
+        sink.fill(x, end, ambient_);
+        stats.ambient_pixels += static_cast<std::uint32_t>(end - x);
+        x = end;
+        continue;
+      }
+      step_run(sink, acc, x, end);
+      x = end;
+    }
+    return stats;
+  }
+
+  // The per-pixel inner loop: two additions per channel per pixel.
+  template <class Sink>
+  static constexpr void step_run(const Sink& sink, cosn::QuadState acc[3], int x, int end) {
+    std::int64_t r = acc[0].v, g = acc[1].v, b = acc[2].v;
+    std::int64_t dr = acc[0].d1, dg = acc[1].d1, db = acc[2].d1;
+    const std::int64_t ddr = acc[0].d2, ddg = acc[1].d2, ddb = acc[2].d2;
+    for (; x < end; ++x) {
+      sink.put(x, r, g, b);
+      r += dr, dr += ddr;
+      g += dg, dg += ddg;
+      b += db, db += ddb;
+    }
+    acc[0] = {r, dr, ddr};
+    acc[1] = {g, dg, ddg};
+    acc[2] = {b, db, ddb};
+  }
+
+  // Insertion sort by x (stable: a term's events stay in order); at most 5 per term.
+  constexpr void sort_events() {
+    for (int i = 1; i < count_; ++i) {
+      const Event e = events_[i];
+      int j = i - 1;
+      while (j >= 0 && events_[j].x > e.x) {
+        events_[j + 1] = events_[j];
+        --j;
+      }
+      events_[j + 1] = e;
+    }
+  }
+
+  int length_ = 0, count_ = 0, terms_count_ = 0;
+  bool safe_ = true;
+  std::int64_t ambient_[3] = {0, 0, 0};
+  Event events_[kMaxTerms * cosn::kMaxSegments];
+  TermSegments terms_[kMaxTerms];
+};
+
+}  // namespace tp::fw::kb

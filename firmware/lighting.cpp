@@ -1,0 +1,79 @@
+#include "firmware/lighting.hpp"
+
+#include "firmware/vecmath.hpp"
+#include "fixedpoint/vec3.hpp"
+
+namespace tp::fw {
+namespace {
+
+q1_30 mul(q1_30 a, q1_30 b) { return fx::mul_sat<q1_30>(a, b); }
+q1_30 clamp_positive(q1_30 x) { return x.raw() < 0 ? q1_30::zero() : x; }
+
+// Unit vector toward the light from p (eye space).
+Vec3u light_direction(const LightState& l, const Vec3q16& p) {
+  if (l.type == LightType::kDirectional) return l.direction;
+  return normalize_wide(std::int64_t{l.position.x.raw()} - p.x.raw(),
+                        std::int64_t{l.position.y.raw()} - p.y.raw(),
+                        std::int64_t{l.position.z.raw()} - p.z.raw());
+}
+
+}  // namespace
+
+q1_30 power(q1_30 x, std::uint32_t n) {
+  q1_30 result = q1_30::one();
+  q1_30 base = x;
+  while (n != 0) {
+    if ((n & 1u) != 0) result = mul(result, base);
+    n >>= 1;
+    if (n != 0) base = mul(base, base);
+  }
+  return result;
+}
+
+Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) {
+  const MaterialCmd& m = ctx.material;
+  Counters& cnt = *ctx.counters;
+  ++cnt.lighting_evaluations;
+  Radiance out{};
+  q1_30 diffuse_colour[3];
+  for (int c = 0; c < 3; ++c) {
+    out.c[c] = mul(m.ka, m.color[c]).raw();  // ka Ia O_c, Ia = 1
+    diffuse_colour[c] = mul(m.kd, m.color[c]);
+  }
+  // V: toward the eye, at the origin (finite) or along +z (infinite).
+  Vec3u v{q1_30::zero(), q1_30::zero(), q1_30::one()};
+  if (ctx.eye == EyeMode::kFinite) {
+    v = normalize_wide(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
+                       -std::int64_t{p.z.raw()});
+    ++cnt.normalizations;
+  }
+  for (const LightState& l : ctx.lights) {
+    if (l.type == LightType::kOff) continue;
+    const Vec3u lv = light_direction(l, p);
+    if (l.type == LightType::kPoint) ++cnt.normalizations;
+    const Vec3u h = normalize_wide(std::int64_t{lv.x.raw()} + v.x.raw(),
+                                   std::int64_t{lv.y.raw()} + v.y.raw(),
+                                   std::int64_t{lv.z.raw()} + v.z.raw());
+    ++cnt.normalizations;
+    const q1_30 ndl = clamp_positive(fx::dot<q1_30>(n, lv));
+    const q1_30 ndh = clamp_positive(fx::dot<q1_30>(n, h));
+    const q1_30 spec = mul(m.ks, power(ndh, m.n));
+    ++cnt.specular_evaluations;
+    for (int c = 0; c < 3; ++c) {
+      // kd O_c (N.L) + ks (N.H)^n <= 2 (q1_30 saturates at 2 - 2^-30), times Il_c <= 16.
+      const std::int64_t term = std::int64_t{mul(diffuse_colour[c], ndl).raw()} + spec.raw();
+      out.c[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+    }
+  }
+  return out;
+}
+
+std::uint8_t to_level(std::int64_t i_q30) {
+  constexpr std::int64_t one = std::int64_t{1} << 30;
+  const std::int64_t v = i_q30 < 0 ? 0 : (i_q30 > one ? one : i_q30);
+  return static_cast<std::uint8_t>((v * 255 + (one >> 1)) >> 30);
+}
+
+Rgb8 to_rgb8(const Radiance& r) { return Rgb8{to_level(r.c[0]), to_level(r.c[1]), to_level(r.c[2])}; }
+
+}  // namespace tp::fw

@@ -1,0 +1,86 @@
+// The per-method interface (DESIGN §6): every shading method is one class behind this.
+//
+// The pipeline is setup -> traversal -> shading, kept apart:
+//   1. geometry (geometry.cpp) transforms, clips and projects; each triangle that reaches the
+//      rasterizer is handed to the method's setup() with its three ShadeVertex records;
+//   2. the rasterizer (raster.cpp) walks the edges in y and cuts spans in x (top-left rule);
+//   3. for each span the method's shade_span() writes one colour per pixel of [x0, x1).
+// Depth test and framebuffer writes are the pipeline's, after shade_span.
+//
+// Spans carry where their ends lie on the triangle's edges (which edge, parameter along it),
+// so that a method may interpolate its own quantities along the edges in y and then along the
+// span in x (Gouraud's colours, Kuijk-Blake's slerped vectors), or ignore them and use screen
+// positions (Bishop-Weimer's polynomial in x, y) or barycentrics (Brown) from TriangleSetup.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/counters.hpp"
+#include "firmware/types.hpp"
+
+namespace tp::fw {
+
+// One transformed vertex, as every method sees it.
+struct ShadeVertex {
+  Vec3q16 eye;             // eye-space position
+  Vec3u normal;            // eye-space unit normal
+  std::int32_t sx = 0;     // screen x in 1/16 pixel (pixel i's centre is 16 i + 8)
+  std::int32_t sy = 0;     // screen y in 1/16 pixel, row 0 at the top
+  std::int64_t z = 0;      // NDC z = z_clip / w, 30 fraction bits, clamped to [-2, 2]
+  q15_16 w;                // clip w (> 0 after clipping)
+};
+
+// A triangle ready for rasterization: area2 > 0 (vertex order fixed up by the pipeline, so the
+// edge functions below are >= 0 inside), plus the exact edge functions in subpixel units.
+struct Triangle {
+  ShadeVertex v[3];
+  std::int64_t area2 = 0;  // twice the signed screen area in (1/16 pixel)^2, > 0
+  bool front_facing = true;
+};
+
+// Edge function of the directed edge a->b at subpixel point (px, py): exact, and for a triangle
+// with area2 > 0 it is the barycentric weight of the opposite vertex times area2.
+constexpr std::int64_t edge_function(const ShadeVertex& a, const ShadeVertex& b, std::int64_t px,
+                                     std::int64_t py) {
+  return (std::int64_t{b.sx} - a.sx) * (py - a.sy) - (std::int64_t{b.sy} - a.sy) * (px - a.sx);
+}
+
+// Where one end of a span lies: on the edge from vertex `from` to vertex `to` (from above to),
+// at parameter t in [0, 1] (Q1.30) measured from `from`, at the row's centre line.
+struct EdgePos {
+  std::uint8_t from = 0, to = 0;
+  q1_30 t;
+};
+
+struct Span {
+  std::int32_t y = 0;          // pixel row
+  std::int32_t x0 = 0, x1 = 0; // pixels [x0, x1), x1 > x0, already inside the viewport
+  EdgePos left, right;         // the span's ends on the triangle's edges (before the scissor)
+};
+
+// What a method may read besides the triangle: material, lights, eye, and the counters.
+struct LightState {
+  LightType type = LightType::kOff;
+  q15_16 color[3];
+  Vec3u direction;
+  Vec3q16 position;
+};
+struct ShadeContext {
+  MaterialCmd material;
+  LightState lights[kMaxLights];
+  EyeMode eye = EyeMode::kInfinite;
+  Counters* counters = nullptr;
+};
+
+class ShadingMethod {
+ public:
+  // Per-triangle setup. Returns false to skip the triangle (counted as triangles_skipped).
+  virtual bool setup(const Triangle& tri, const ShadeContext& ctx) = 0;
+  // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0).
+  virtual void shade_span(const Span& s, Rgb8* out) = 0;
+
+ protected:
+  ~ShadingMethod() = default;
+};
+
+}  // namespace tp::fw

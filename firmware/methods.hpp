@@ -1,0 +1,52 @@
+// The shading methods implemented so far (DESIGN §6, methods 1-3), one unit each. Each states
+// what it handles exactly: all three take point lights, a finite eye and up to kMaxLights
+// lights with the exact Blinn-Phong formula; they differ in where the formula is evaluated.
+#pragma once
+
+#include "firmware/interp.hpp"
+#include "firmware/lighting.hpp"
+#include "firmware/method.hpp"
+
+namespace tp::fw {
+
+// 1. Flat (shade_flat.cpp): one evaluation per triangle, at the eye-space centroid with the
+//    renormalised mean of the vertex normals; every pixel gets that colour.
+class FlatMethod final : public ShadingMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+ private:
+  Rgb8 colour_{0, 0, 0};
+};
+
+// 2. Gouraud (shade_gouraud.cpp): lighting at the three vertices, clamped to [0, 1], then
+//    interpolated linearly in SCREEN space (the 1980s assumption, not perspective-correct):
+//    one addition per channel per pixel.
+class GouraudMethod final : public ShadingMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+ private:
+  const Triangle* tri_ = nullptr;
+  ScreenPlane plane_[3];
+};
+
+// 3. Phong, exact (shade_phong.cpp): per pixel, the normal and the eye-space position are
+//    interpolated perspective-correctly (hyperbolic barycentrics, like the double reference),
+//    the normal renormalised by the fixed-point rsqrt, L and H recomputed for point lights and
+//    a finite eye, and the power taken by repeated squaring.
+class PhongMethod final : public ShadingMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+ private:
+  const Triangle* tri_ = nullptr;
+  const ShadeContext* ctx_ = nullptr;
+  PerspectiveBary bary_;
+  Lambdas step_{};
+};
+
+}  // namespace tp::fw

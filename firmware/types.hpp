@@ -1,0 +1,106 @@
+// Public data types of the emulated device: formats, error codes, method ids and one struct
+// per command payload. Everything the host glue needs to drive the device is here or in
+// device.hpp; docs/CONVENTIONS.md states the rendering conventions these types follow.
+#pragma once
+
+#include <cstdint>
+
+#include "fixedpoint/q.hpp"
+#include "fixedpoint/vec3.hpp"
+
+namespace tp::fw {
+
+using fx::q15_16;
+using fx::q1_30;
+using fx::q2_29;
+
+// Every command returns one of these; the device also keeps the last one (last_error()).
+// A command that returns anything but kOk has changed nothing in the device state.
+enum class Error : std::uint32_t {
+  kOk = 0,
+  kBadOpcode = 1,          // command stream: unknown opcode
+  kBadLength = 2,          // command stream: payload length wrong for the opcode
+  kBadArgument = 3,        // an enum or flag outside its documented values
+  kOutOfMemory = 4,        // the layout (framebuffer, buffers) does not fit the memory block
+  kViewportTooLarge = 5,   // width or height 0 or above kMaxDimension
+  kIndexOutOfRange = 6,    // an index >= vertex count, a range outside a buffer
+  kNotUnit = 7,            // a normal / direction whose squared length is not 1 within tolerance
+  kOutOfRange = 8,         // a matrix entry, coordinate or transformed value not representable
+  kTooManyLights = 9,      // light index >= kMaxLights
+  kUnknownMethod = 10,     // method id not implemented (reserved ids included)
+  kNoViewport = 11,        // draw/clear before set_viewport
+};
+
+enum class PixelFormat : std::uint32_t { kRgb888 = 0, kRgb565 = 1 };
+
+// Shading methods (DESIGN §6). Reserved ids are rejected by set_method until implemented.
+enum class Method : std::uint32_t {
+  kFlat = 1,
+  kGouraud = 2,
+  kPhong = 3,
+  kDuff = 4,           // reserved
+  kBishopWeimer = 5,   // reserved
+  kKuijkBlake = 6,     // reserved
+  kBrown = 7,          // reserved
+  kVlasic = 8,         // reserved
+};
+
+enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };
+enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
+
+// Device limits. The bound arguments are in raster.cpp (coordinates) and device.cpp (inputs).
+inline constexpr std::uint32_t kMaxDimension = 4096;   // largest width and height
+inline constexpr std::uint32_t kMaxLights = 16;
+inline constexpr std::uint32_t kMaxExponent = 4096;    // Blinn-Phong n
+// Matrix entries and vertex coordinates must satisfy |v| < 2^14 (so that a 4-term dot product of
+// raw Q15.16 values stays below 2^62 in 64-bit arithmetic).
+inline constexpr std::int32_t kMaxCoordRaw = (std::int32_t{1} << 30) - 1;
+// Light intensities per channel: 0 <= I <= 16.
+inline constexpr std::int32_t kMaxIntensityRaw = std::int32_t{16} << 16;
+// A unit vector is accepted if | |v|^2 - 1 | <= 2^-12.
+inline constexpr std::int64_t kUnitToleranceRaw = std::int64_t{1} << (60 - 12);
+
+// 4x4 matrix, column-major like OpenGL/GLM: m[col][row], Q15.16.
+struct Mat4 {
+  q15_16 m[4][4];
+};
+
+using Vec3q16 = fx::Vec3<q15_16>;  // a position
+using Vec3u = fx::Vec3<q1_30>;     // a unit vector
+
+// Payload structs, one per command.
+struct ViewportCmd {
+  std::uint32_t width = 0, height = 0;
+  PixelFormat format = PixelFormat::kRgb888;
+  bool write_count = false;  // keep a per-pixel count of writes this frame (tests, metrics)
+};
+struct BufferCapacityCmd {
+  std::uint32_t max_vertices = 0, max_indices = 0;
+};
+struct MaterialCmd {
+  q1_30 color[3];  // O_c in [0, 1]
+  q1_30 ka, kd, ks;  // each in [0, 1]
+  std::uint32_t n = 1;  // Blinn-Phong exponent, 1..kMaxExponent
+  // Kuijk-Blake (a, b) in radians for the later methods: 0 <= a < b <= pi/2, or both 0 (unset).
+  q2_29 a, b;
+};
+struct LightCmd {
+  std::uint32_t index = 0;
+  LightType type = LightType::kOff;
+  q15_16 color[3];  // intensity per channel, 0..16
+  Vec3u direction;  // directional: unit vector TOWARD the light, eye space
+  Vec3q16 position; // point: eye-space position
+};
+struct Vertex {
+  Vec3q16 position;  // model space
+  Vec3u normal;      // model space, unit
+};
+struct DrawCmd {
+  std::uint32_t first = 0, count = 0;  // a range of the index buffer; count % 3 == 0
+};
+
+struct Rgb8 {
+  std::uint8_t r, g, b;
+};
+
+}  // namespace tp::fw

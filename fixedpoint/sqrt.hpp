@@ -1,0 +1,130 @@
+// Square root and reciprocal square root between Q formats.
+//
+//   sqrt<To>(x):  correctly rounded (error <= 0.5 LSB of To, ties away from zero -- a tie
+//                 cannot actually occur), by the digit-by-digit integer method on the exact
+//                 scaled radicand. x <= 0 -> To::zero() (documented: no NaN in integers).
+//                 Saturates to To::max() when the root does not fit To.
+//   rsqrt<To>(x): 1/sqrt(x) by Newton-Raphson r' = r (3 - y r^2) / 2 from a 48-entry seed
+//                 table (1.5 % seed error -> four quadratic steps reach the 2^-61 working
+//                 precision), carried in 64-bit Q2.62 with exact 128-bit products, then
+//                 rounded once into To. Error <= 0.5 LSB of To plus ~2^-59 relative (so 0.5
+//                 LSB for every To up to 32 bits; see docs/ACCURACY.md).
+//                 x <= 0 -> To::max() (documented: the limit from the right). Saturates.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstdint>
+
+#include "fixedpoint/q.hpp"
+#include "fixedpoint/wide.hpp"
+
+namespace tp::fx {
+
+namespace detail {
+
+// floor(sqrt(u * 2^e)) for e >= 0, digit by digit (two radicand bits per step, from the top;
+// the e appended zero bits are read virtually, so the radicand may be up to 64 + e bits).
+// `round_up` reports remainder > root, i.e. sqrt >= root + 1/2 (an integer radicand is never
+// exactly (root + 1/2)^2). Stops early with `over` once root > limit; limit < 2^60 keeps
+// 4 * remainder + 3 <= 8 * root + 3 inside 64 bits.
+struct RootResult {
+  u64 root = 0;
+  bool round_up = false;
+  bool over = false;
+};
+constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
+  RootResult r;
+  if (u == 0) return r;
+  const int bits = 64 - std::countl_zero(u) + e;
+  u64 rem = 0;
+  for (int i = (bits + 1) / 2 - 1; i >= 0; --i) {
+    // Radicand bits 2i+1 and 2i: bit j is bit j-e of u (zero below e).
+    u64 pair = 0;
+    for (int j = 2 * i + 1; j >= 2 * i; --j) {
+      pair <<= 1;
+      if (j >= e && j - e < 64) pair |= (u >> (j - e)) & 1u;
+    }
+    rem = (rem << 2) | pair;
+    const u64 trial = (r.root << 2) | 1u;
+    r.root <<= 1;
+    if (rem >= trial) {
+      rem -= trial;
+      r.root |= 1u;
+    }
+    if (r.root > limit) {
+      r.over = true;
+      return r;
+    }
+  }
+  r.round_up = rem > r.root;
+  return r;
+}
+
+// Seed for 1/sqrt(y), y in [1/4, 1) split into 48 intervals of width 1/64 by y's top bits:
+// 1/sqrt at each interval midpoint (33 + 2i) / 128, in Q2.14, computed at compile time by the
+// exact integer root above: sqrt(2^28 * 128 / (33 + 2i)).
+inline constexpr std::array<std::uint16_t, 48> rsqrt_seed = [] {
+  std::array<std::uint16_t, 48> t{};
+  for (int i = 0; i < 48; ++i) {
+    const u64 radicand = (u64{1} << 35) / static_cast<u64>(33 + 2 * i);
+    const RootResult s = isqrt_shifted(radicand, 0, u64{1} << 20);
+    t[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(s.root + (s.round_up ? 1u : 0u));
+  }
+  return t;
+}();
+
+// 1/sqrt(u * 2^-frac) = mantissa * 2^-(62 + exp2), for u > 0. mantissa is Q2.62 in (1, 2]
+// (up to a few units of 2^-62 below the true value: Newton from below, truncating products).
+struct RsqrtResult {
+  u64 mantissa = 0;
+  int exp2 = 0;
+};
+constexpr RsqrtResult rsqrt_core(u64 u, int frac) {
+  // Normalise u = Y * 2^-s with Y in [2^62, 2^64), choosing s so that 64 - s - frac is even:
+  // x = y * 2^(64 - s - frac) with y = Y / 2^64 in [1/4, 1), and 1/sqrt(x) = 1/sqrt(y) * 2^-h.
+  int s = std::countl_zero(u);
+  if (((64 - s - frac) & 1) != 0) --s;
+  const u64 y = s >= 0 ? u << s : (u >> 1);  // s == -1 only for u >= 2^63: drops one low bit
+  const int h = (64 - s - frac) / 2;
+  u64 r = u64{rsqrt_seed[static_cast<std::size_t>((y >> 58) - 16)]} << 48;  // Q2.14 -> Q2.62
+  bool over = false;
+  for (int it = 0; it < 4; ++it) {
+    const u64 r2 = round_shr(mul_u64(r, r), 64, over);    // r^2 in Q4.60 (r <= 2: r^2 <= 4)
+    const u64 e = round_shr(mul_u64(y, r2), 62, over);     // y r^2 in Q2.62, ~1
+    const u64 t = (u64{3} << 62) - e;                      // 3 - y r^2 > 0 (y r^2 < 1.1)
+    r = round_shr(mul_u64(r, t), 63, over);                // r (3 - y r^2) / 2 in Q2.62
+  }
+  return RsqrtResult{r, h};
+}
+
+}  // namespace detail
+
+template <QType To, QType From>
+constexpr To sqrt(From x) {
+  static_assert(To::int_bits + To::frac_bits <= 60, "digit-by-digit root needs 4 spare bits");
+  if (x.raw() <= 0) return To::zero();
+  const auto u = static_cast<detail::u64>(x.raw());
+  // Result raw = sqrt(raw * 2^e) with e = 2 FT - F.
+  constexpr int e = 2 * To::frac_bits - From::frac_bits;
+  if constexpr (e >= 0) {
+    const auto r = detail::isqrt_shifted(u, e, static_cast<detail::u64>(To::max_raw));
+    return detail::from_sign_mag<To>(false, r.root + (r.round_up ? 1u : 0u), r.over);
+  } else {
+    // sqrt(u * 2^e) = sqrt(u * 2^(e + 2k)) / 2^k with e + 2k in {0, 1}; rounding the floor root
+    // half up after the shift equals rounding the true root (the bias is an integer).
+    constexpr int k = (-e + 1) / 2;
+    const auto r = detail::isqrt_shifted(u, e + 2 * k, detail::u64{1} << 40);
+    return detail::from_sign_mag<To>(false, detail::round_shr(r.root, k));
+  }
+}
+
+template <QType To, QType From>
+constexpr To rsqrt(From x) {
+  if (x.raw() <= 0) return To::max();
+  const auto r = detail::rsqrt_core(static_cast<detail::u64>(x.raw()), From::frac_bits);
+  // Result raw = mantissa * 2^(FT - 62 - exp2).
+  return detail::from_sign_mag_scaled<To>(false, r.mantissa, 62 + r.exp2 - To::frac_bits);
+}
+
+}  // namespace tp::fx

@@ -1,0 +1,118 @@
+// Unsigned magnitude helpers shared by div / sqrt / rsqrt / vec3: a 64x64 -> 128-bit product
+// built from 32x32 -> 64 multiplies (the Cortex-M build has no __int128), round-half-up right
+// shifts of magnitudes, and the final "sign + magnitude -> saturated Q" step.
+//
+// Rounding convention (same as q.hpp): round to nearest, ties away from zero. Working on the
+// magnitude with round-half-up and applying the sign afterwards gives exactly that, and makes
+// every function here odd-symmetric: f(-x) == -f(x) bit for bit.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "fixedpoint/q.hpp"
+
+namespace tp::fx::detail {
+
+using u64 = std::uint64_t;
+
+struct U128 {
+  u64 hi = 0;
+  u64 lo = 0;
+};
+
+// |v| without overflow, also for INT64_MIN.
+constexpr u64 magnitude(wide_t v) {
+  return v < 0 ? u64{0} - static_cast<u64>(v) : static_cast<u64>(v);
+}
+
+// Exact 128-bit product of two 64-bit magnitudes (schoolbook on 32-bit limbs).
+constexpr U128 mul_u64(u64 a, u64 b) {
+  constexpr u64 m32 = 0xffffffffu;
+  const u64 a0 = a & m32, a1 = a >> 32, b0 = b & m32, b1 = b >> 32;
+  const u64 p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+  const u64 mid = (p00 >> 32) + (p01 & m32) + (p10 & m32);  // < 3 * 2^32: no overflow
+  return U128{p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32), (mid << 32) | (p00 & m32)};
+}
+
+// round(m / 2^sh), half up, for sh >= 0 (any size).
+constexpr u64 round_shr(u64 m, int sh) {
+  if (sh <= 0) return m;
+  if (sh > 64) return 0;
+  if (sh == 64) return m >> 63;  // m / 2^64 < 1; it rounds to 1 iff m >= 2^63
+  return (m >> sh) + ((m >> (sh - 1)) & 1u);
+}
+
+// round(v / 2^sh), half up, for 0 <= sh < 128. Sets `over` when the result needs 64+ bits.
+// The bias is added as the bit below the cut, so v may be any 128-bit value.
+constexpr u64 round_shr(U128 v, int sh, bool& over) {
+  over = false;
+  if (sh <= 0) {
+    over = v.hi != 0;
+    return v.lo;
+  }
+  if (sh >= 64) {
+    const int s = sh - 64;
+    const u64 q = s == 0 ? v.hi : v.hi >> s;
+    const u64 half = s == 0 ? (v.lo >> 63) : ((v.hi >> (s - 1)) & 1u);
+    return q + half;  // q < 2^64 - 1 here unless v.hi is all ones, which no caller produces
+  }
+  if ((v.hi >> sh) != 0) {
+    over = true;
+    return ~u64{0};
+  }
+  const u64 q = (v.hi << (64 - sh)) | (v.lo >> sh);
+  const u64 half = (v.lo >> (sh - 1)) & 1u;
+  if (q == ~u64{0} && half != 0) over = true;
+  return q + half;
+}
+
+// m * 2^k for k >= 0, or `over` when it leaves 63 bits (callers saturate then).
+constexpr u64 shl_checked(u64 m, int k, bool& over) {
+  over = false;
+  if (k <= 0 || m == 0) return m;
+  if (k >= 63 || m > (u64{1} << (63 - k)) - 1) {
+    over = true;
+    return ~u64{0};
+  }
+  return m << k;
+}
+
+// A magnitude and a sign to To, saturated: |raw| above the range gives To::max() / To::min().
+template <QType To>
+constexpr To from_sign_mag(bool negative, u64 mag, bool over = false) {
+  using S = typename To::storage_type;
+  if (!negative) {
+    if (over || mag > static_cast<u64>(To::max_raw)) return To::max();
+    return To::from_raw(static_cast<S>(mag));
+  }
+  if (over || mag >= static_cast<u64>(-To::min_raw)) return To::min();
+  return To::from_raw(static_cast<S>(-static_cast<wide_t>(mag)));
+}
+
+// To-raw = mag * 2^-sh (sh of either sign), rounded half up on the magnitude, then signed and
+// saturated: round to nearest, ties away from zero.
+template <QType To>
+constexpr To from_sign_mag_scaled(bool negative, u64 mag, int sh) {
+  bool over = false;
+  const u64 m = sh >= 0 ? round_shr(mag, sh) : shl_checked(mag, -sh, over);
+  return from_sign_mag<To>(negative, m, over);
+}
+
+// Exact sum of signed 64-bit terms, each of magnitude <= 2^62, at most three of them: the
+// positive and the negative parts are accumulated apart in u64 (<= 3 * 2^62 < 2^64), so no
+// intermediate can overflow even when the signed total would not fit int64.
+struct SignMag {
+  bool negative = false;
+  u64 mag = 0;
+};
+constexpr SignMag exact_sum(const wide_t* terms, int count) {
+  u64 pos = 0, neg = 0;
+  for (int i = 0; i < count; ++i) {
+    if (terms[i] >= 0) pos += static_cast<u64>(terms[i]);
+    else neg += magnitude(terms[i]);
+  }
+  return pos >= neg ? SignMag{false, pos - neg} : SignMag{true, neg - pos};
+}
+
+}  // namespace tp::fx::detail

@@ -1,0 +1,6 @@
+# The host's driver of the device (scene -> commands) and the command-line tool.
+find_package(CLI11 CONFIG REQUIRED)
+add_library(tp_driver STATIC ${CMAKE_CURRENT_LIST_DIR}/device_renderer.cpp)
+target_link_libraries(tp_driver PUBLIC tp_host tp_firmware)
+add_executable(tinyphong ${CMAKE_CURRENT_LIST_DIR}/tinyphong.cpp)
+target_link_libraries(tinyphong PRIVATE tp_driver CLI11::CLI11)

@@ -1,0 +1,334 @@
+#include "host/device_renderer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "host/to_fixed.hpp"
+
+namespace tp::host {
+
+namespace {
+
+using fx::q15_16;
+using fx::q1_30;
+using fx::q2_29;
+
+// Device-side errors are reported as scene errors so that every caller (CLI, server) has one
+// error type to show: the scene file, no line (the problem is in the combination), the what.
+[[noreturn]] void reject(const Scene& scene, const std::string& path, const std::string& problem) {
+  throw SceneError(scene.file.empty() ? "<scene>" : scene.file, 0, path, problem);
+}
+
+fw::Vec3u unit_vector(const glm::dvec3& v, const std::string& what, ConversionReport& report) {
+  const auto q = to_fixed3<q1_30>(glm::normalize(v), what, report);
+  return q ? fw::Vec3u{(*q)[0], (*q)[1], (*q)[2]} : fw::Vec3u{};
+}
+
+fw::Vec3q16 position(const glm::dvec3& v, const std::string& what, ConversionReport& report) {
+  const auto q = to_fixed3<q15_16>(v, what, report);
+  return q ? fw::Vec3q16{(*q)[0], (*q)[1], (*q)[2]} : fw::Vec3q16{};
+}
+
+fw::Mat4 to_device_matrix(const glm::dmat4& m, const std::string& what, ConversionReport& report) {
+  fw::Mat4 out{};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      const auto q = to_fixed<q15_16>(m[c][r], what + "[" + std::to_string(c) + "][" +
+                                                   std::to_string(r) + "]", report);
+      if (q) out.m[c][r] = *q;
+    }
+  return out;
+}
+
+glm::dmat4 rotation_about_y(double radians) {
+  return glm::rotate(glm::dmat4(1.0), radians, glm::dvec3(0, 1, 0));
+}
+
+}  // namespace
+
+Image8 DeviceFrame::image() const {
+  Image8 img(width, height);
+  img.rgb = rgb;
+  return img;
+}
+
+Image8 ReferenceFrame::image() const {
+  Image8 img(width, height);
+  img.rgb = rgb;
+  return img;
+}
+
+const std::vector<MethodName>& method_names() {
+  static const std::vector<MethodName> names = {
+      {"flat", fw::Method::kFlat, "one Blinn-Phong evaluation per triangle, at the centroid"},
+      {"gouraud", fw::Method::kGouraud, "lighting at the vertices, colour interpolated"},
+      {"phong", fw::Method::kPhong, "exact per-pixel Blinn-Phong in fixed point"},
+  };
+  return names;
+}
+
+fw::Method method_from_name(std::string_view name) {
+  for (const auto& m : method_names())
+    if (m.name == name) return m.method;
+  std::string valid;
+  for (const auto& m : method_names()) valid += (valid.empty() ? "" : ", ") + std::string(m.name);
+  throw std::invalid_argument("unknown shading method '" + std::string(name) + "' (valid: " +
+                              valid + ")");
+}
+
+std::string_view method_name(fw::Method method) {
+  for (const auto& m : method_names())
+    if (m.method == method) return m.name;
+  return "unknown";
+}
+
+CounterSnapshot counter_snapshot(const fw::Counters& c) {
+  return {{"triangles_in", c.triangles_in},
+          {"triangles_culled", c.triangles_culled},
+          {"triangles_clipped", c.triangles_clipped},
+          {"triangles_rejected", c.triangles_rejected},
+          {"triangles_degenerate", c.triangles_degenerate},
+          {"triangles_drawn", c.triangles_drawn},
+          {"triangles_skipped", c.triangles_skipped},
+          {"spans", c.spans},
+          {"pixels_shaded", c.pixels_shaded},
+          {"pixels_written", c.pixels_written},
+          {"lighting_evaluations", c.lighting_evaluations},
+          {"specular_evaluations", c.specular_evaluations},
+          {"normalizations", c.normalizations},
+          {"lights_skipped_triangle", c.lights_skipped_triangle},
+          {"lights_skipped_span", c.lights_skipped_span},
+          {"segments", c.segments},
+          {"frames", c.frames}};
+}
+
+std::string_view error_name(fw::Error e) {
+  switch (e) {
+    case fw::Error::kOk: return "ok";
+    case fw::Error::kBadOpcode: return "bad opcode";
+    case fw::Error::kBadLength: return "bad command length";
+    case fw::Error::kBadArgument: return "bad argument";
+    case fw::Error::kOutOfMemory: return "out of device memory";
+    case fw::Error::kViewportTooLarge: return "viewport too large";
+    case fw::Error::kIndexOutOfRange: return "index out of range";
+    case fw::Error::kNotUnit: return "a normal or direction is not unit length";
+    case fw::Error::kOutOfRange: return "a value is outside the device's range";
+    case fw::Error::kTooManyLights: return "too many lights";
+    case fw::Error::kUnknownMethod: return "shading method not available";
+    case fw::Error::kNoViewport: return "no viewport set";
+  }
+  return "unknown error";
+}
+
+struct DeviceRenderer::Prepared {
+  fw::ViewportCmd viewport;
+  fw::BufferCapacityCmd capacity;
+  fw::Mat4 projection{};
+  fw::EyeMode eye = fw::EyeMode::kInfinite;
+  fw::MaterialCmd material;
+  std::vector<fw::LightCmd> lights;
+  fw::Method method = fw::Method::kGouraud;
+  std::vector<fw::Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<MeshRange> meshes;
+};
+
+DeviceRenderer::DeviceRenderer(int max_width, int max_height, std::uint32_t max_vertices,
+                               std::uint32_t max_indices)
+    : memory_(fw::Device::memory_required(
+          fw::ViewportCmd{static_cast<std::uint32_t>(max_width),
+                          static_cast<std::uint32_t>(max_height), fw::PixelFormat::kRgb888, true},
+          fw::BufferCapacityCmd{max_vertices, max_indices})),
+      device_(std::span<std::byte>(memory_)) {}
+
+DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
+  Prepared p;
+  ConversionReport report;
+  if (scene.width <= 0 || scene.height <= 0)
+    reject(scene, "/resolution", "width and height must be positive");
+  p.viewport = {static_cast<std::uint32_t>(scene.width), static_cast<std::uint32_t>(scene.height),
+                fw::PixelFormat::kRgb888, /*write_count=*/true};
+  p.projection = to_device_matrix(projection_matrix(scene.camera, scene.width, scene.height),
+                                  "projection", report);
+  p.eye = eye_at_infinity(scene.camera) ? fw::EyeMode::kInfinite : fw::EyeMode::kFinite;
+
+  const Material& m = scene.material;
+  for (int c = 0; c < 3; ++c)
+    if (auto q = to_fixed<q1_30>(m.colour[c], "material colour", report)) p.material.color[c] = *q;
+  if (auto q = to_fixed<q1_30>(m.ka, "material ka", report)) p.material.ka = *q;
+  if (auto q = to_fixed<q1_30>(m.kd, "material kd", report)) p.material.kd = *q;
+  if (auto q = to_fixed<q1_30>(m.ks, "material ks", report)) p.material.ks = *q;
+  if (m.n < 1 || m.n > fw::kMaxExponent || m.n != std::floor(m.n))
+    reject(scene, "/material/n",
+           "n = " + std::to_string(m.n) + " must be an integer in 1.." +
+               std::to_string(fw::kMaxExponent) + " for the device");
+  p.material.n = static_cast<std::uint32_t>(m.n);
+  if (m.a && m.b) {
+    if (auto q = to_fixed<q2_29>(*m.a, "material a", report)) p.material.a = *q;
+    if (auto q = to_fixed<q2_29>(*m.b, "material b", report)) p.material.b = *q;
+  }
+
+  const auto lights = eye_lights(scene);
+  if (lights.size() > fw::kMaxLights)
+    reject(scene, "/lights", "the device has " + std::to_string(fw::kMaxLights) + " lights");
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const std::string name = "light " + std::to_string(i);
+    fw::LightCmd l;
+    l.index = static_cast<std::uint32_t>(i);
+    for (int c = 0; c < 3; ++c)
+      if (auto q = to_fixed<q15_16>(lights[i].colour[c], name + " colour", report))
+        l.color[c] = *q;
+    if (lights[i].kind == LightKind::Directional) {
+      l.type = fw::LightType::kDirectional;
+      l.direction = unit_vector(lights[i].vector, name + " direction", report);
+    } else {
+      l.type = fw::LightType::kPoint;
+      l.position = position(lights[i].vector, name + " position", report);
+    }
+    p.lights.push_back(l);
+  }
+  try {
+    p.method = method_from_name(scene.method);
+  } catch (const std::invalid_argument& e) {
+    reject(scene, "/method", e.what());
+  }
+
+  for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+    const Mesh& mesh = scene.meshes[k].mesh;
+    const auto base = static_cast<std::uint32_t>(p.vertices.size());
+    MeshRange range{static_cast<std::uint32_t>(p.indices.size()),
+                    static_cast<std::uint32_t>(mesh.triangles.size() * 3),
+                    scene.meshes[k].transform.matrix()};
+    const std::string name = "mesh " + std::to_string(k);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+      p.vertices.push_back({position(mesh.positions[v], name + " vertex " + std::to_string(v), report),
+                            unit_vector(mesh.normals[v], name + " normal " + std::to_string(v), report)});
+    for (const auto& t : mesh.triangles)
+      for (std::uint32_t i : t) p.indices.push_back(base + i);
+    p.meshes.push_back(range);
+  }
+  if (!report.ok()) reject(scene, "", "does not fit the device's fixed-point formats:\n" +
+                                          report.to_string());
+  p.capacity = {static_cast<std::uint32_t>(p.vertices.size()),
+                static_cast<std::uint32_t>(p.indices.size())};
+  return p;
+}
+
+void DeviceRenderer::apply(const Scene& scene, const Prepared& p) {
+  const auto step = [&](fw::Error e, const char* what) {
+    if (e != fw::Error::kOk)
+      reject(scene, "", std::string("the device rejected ") + what + ": " +
+                            std::string(error_name(e)));
+  };
+  step(device_.set_viewport(p.viewport), "the viewport");
+  step(device_.set_buffer_capacity(p.capacity), "the buffer sizes");
+  step(device_.set_projection(p.projection), "the projection");
+  step(device_.set_eye(p.eye), "the eye");
+  step(device_.set_material(p.material), "the material");
+  for (std::uint32_t i = 0; i < fw::kMaxLights; ++i) {
+    fw::LightCmd l = i < p.lights.size() ? p.lights[i] : fw::LightCmd{};
+    l.index = i;
+    step(device_.set_light(l), "a light");
+  }
+  step(device_.set_method(p.method), "the shading method");
+  step(device_.set_culling(scene.cull_backfaces), "culling");
+  step(device_.upload_vertices(0, p.vertices), "the vertices");
+  step(device_.upload_indices(0, p.indices), "the indices");
+  // Every mesh's model-view must be representable at the rotations the animation uses; the
+  // unrotated one is checked here, the device checks the rest per frame.
+  for (const auto& mesh : p.meshes)
+    step(device_.set_modelview(modelview_for(scene, mesh, 0.0)), "a model-view matrix");
+}
+
+void DeviceRenderer::set_scene(const Scene& scene) {
+  const Prepared p = prepare(scene);
+  try {
+    apply(scene, p);
+  } catch (const SceneError&) {
+    // Put the previous scene back so that the device keeps rendering what it had.
+    if (loaded_) apply(scene_, prepare(scene_));
+    throw;
+  }
+  scene_ = scene;
+  meshes_ = p.meshes;
+  loaded_ = true;
+}
+
+fw::Mat4 DeviceRenderer::modelview_for(const Scene& scene, const MeshRange& mesh,
+                                       double rotation) const {
+  ConversionReport report;
+  const glm::dmat4 mv = view_matrix(scene.camera) * rotation_about_y(rotation) * mesh.model;
+  fw::Mat4 m = to_device_matrix(mv, "model-view", report);
+  if (!report.ok()) reject(scene, "", report.to_string());
+  return m;
+}
+
+void DeviceRenderer::check(fw::Error e, const char* what) const {
+  if (e != fw::Error::kOk)
+    throw std::runtime_error(std::string("device: ") + what + " failed: " +
+                             std::string(error_name(e)));
+}
+
+DeviceFrame DeviceRenderer::render(double model_rotation_radians) {
+  if (!loaded_) throw std::logic_error("DeviceRenderer::render before set_scene");
+  const auto start = std::chrono::steady_clock::now();
+  const glm::dvec3 bg = glm::clamp(scene_.background, 0.0, 1.0) * 255.0;
+  check(device_.clear({static_cast<std::uint8_t>(std::lround(bg.r)),
+                       static_cast<std::uint8_t>(std::lround(bg.g)),
+                       static_cast<std::uint8_t>(std::lround(bg.b))}),
+        "clear");
+  for (const auto& mesh : meshes_) {
+    check(device_.set_modelview(modelview_for(scene_, mesh, model_rotation_radians)),
+          "set_modelview");
+    check(device_.draw({mesh.first_index, mesh.index_count}), "draw");
+  }
+  check(device_.end_frame(), "end_frame");
+  const auto stop = std::chrono::steady_clock::now();
+
+  DeviceFrame f;
+  const fw::FramebufferView fb = device_.framebuffer();
+  f.width = static_cast<int>(fb.width);
+  f.height = static_cast<int>(fb.height);
+  f.render_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  const std::size_t pixels = std::size_t{fb.width} * fb.height;
+  f.rgb.resize(pixels * 3);
+  for (std::uint32_t y = 0; y < fb.height; ++y) {
+    const std::uint8_t* row = fb.data + std::size_t{y} * fb.stride;
+    std::uint8_t* out = f.rgb.data() + std::size_t{y} * fb.width * 3;
+    if (fb.format == fw::PixelFormat::kRgb888) {
+      std::copy(row, row + std::size_t{fb.width} * 3, out);
+    } else {
+      // RGB565, little-endian: widen by bit replication, as a display would show it.
+      for (std::uint32_t x = 0; x < fb.width; ++x) {
+        const unsigned v = unsigned{row[2 * x]} | (unsigned{row[2 * x + 1]} << 8);
+        const unsigned r = (v >> 11) & 31u, g = (v >> 5) & 63u, b = v & 31u;
+        out[3 * x] = static_cast<std::uint8_t>((r << 3) | (r >> 2));
+        out[3 * x + 1] = static_cast<std::uint8_t>((g << 2) | (g >> 4));
+        out[3 * x + 2] = static_cast<std::uint8_t>((b << 3) | (b >> 2));
+      }
+    }
+  }
+  const std::uint8_t* counts = device_.write_counts();
+  f.covered.assign(pixels, 0);
+  for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = counts[i] ? 1 : 0;
+  f.counters = counter_snapshot(device_.counters());
+  return f;
+}
+
+ReferenceFrame DeviceRenderer::render_reference(double model_rotation_radians,
+                                                Interpolation interpolation) const {
+  if (!loaded_) throw std::logic_error("DeviceRenderer::render_reference before set_scene");
+  const FrameSetup frame = frame_setup(scene_);
+  std::vector<DrawMesh> meshes;
+  for (std::size_t k = 0; k < scene_.meshes.size(); ++k)
+    meshes.push_back({&scene_.meshes[k].mesh, view_matrix(scene_.camera) *
+                                                  rotation_about_y(model_rotation_radians) *
+                                                  scene_.meshes[k].transform.matrix()});
+  const ReferenceImage ref = host::render_reference(frame, meshes, interpolation);
+  return {ref.rgb8.width, ref.rgb8.height, ref.rgb8.rgb, ref.mask, ref.linear};
+}
+
+}  // namespace tp::host

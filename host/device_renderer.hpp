@@ -1,0 +1,101 @@
+// The host's driver of the emulated device: turns a Scene (doubles, world space) into device
+// commands (fixed point, eye space), renders frames, and reads them back. The CLI, the server,
+// the scene-level tests and the benchmarks all drive the device through this one class.
+//
+// Float -> fixed conversion is checked (host/to_fixed.hpp): a scene whose numbers do not fit
+// the device's formats is rejected with every offending quantity named, never wrapped.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "firmware/device.hpp"
+#include "host/image.hpp"
+#include "host/reference.hpp"
+#include "host/scene.hpp"
+
+namespace tp::host {
+
+using CounterSnapshot = std::vector<std::pair<std::string, std::uint64_t>>;
+
+// One frame rendered by the device.
+struct DeviceFrame {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;      // RGB888, row-major, top row first, no padding
+  std::vector<std::uint8_t> covered;  // 1 where a triangle wrote the pixel this frame
+  CounterSnapshot counters;           // the device's performance counters, by name
+  double render_ms = 0;               // wall time of clear + draws + end_frame
+  Image8 image() const;
+};
+
+struct ReferenceFrame {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;      // round(255 · clamped double Blinn-Phong)
+  std::vector<std::uint8_t> covered;
+  FloatImage linear;                  // the unclamped double intensities (as float)
+  Image8 image() const;
+};
+
+// Shading method names as the CLI, scene files and the server spell them.
+struct MethodName {
+  std::string_view name;
+  fw::Method method;
+  std::string_view description;
+};
+const std::vector<MethodName>& method_names();
+// Throws std::invalid_argument naming the valid choices.
+fw::Method method_from_name(std::string_view name);
+std::string_view method_name(fw::Method method);
+
+// Names and values of every counter of the device, in a fixed order.
+CounterSnapshot counter_snapshot(const fw::Counters& c);
+
+class DeviceRenderer {
+ public:
+  // Allocates the device's memory block once, for frames up to max_width x max_height and
+  // meshes up to max_vertices / max_indices; the device itself never allocates.
+  explicit DeviceRenderer(int max_width = 2048, int max_height = 2048,
+                          std::uint32_t max_vertices = 1u << 17,
+                          std::uint32_t max_indices = 3u << 18);
+
+  // Converts and uploads the scene. Throws SceneError naming the problem if it does not fit the
+  // device (range, size, a command the device rejects); the previous scene then stays loaded.
+  void set_scene(const Scene& scene);
+  const Scene& scene() const { return scene_; }
+
+  // Renders with the scene's objects rotated by `model_rotation_radians` about the world y axis
+  // (the lights stay put, so the highlights move: the server's animation).
+  DeviceFrame render(double model_rotation_radians = 0.0);
+  // The double-precision reference of the same frame (DESIGN §9).
+  ReferenceFrame render_reference(double model_rotation_radians = 0.0,
+                                  Interpolation interpolation = Interpolation::Phong) const;
+
+  const fw::Device& device() const { return device_; }
+
+ private:
+  struct MeshRange {
+    std::uint32_t first_index = 0, index_count = 0;
+    glm::dmat4 model{1.0};
+  };
+  // Everything set_scene derives from a scene, converted and validated before the device sees it.
+  struct Prepared;
+  Prepared prepare(const Scene& scene) const;
+  void apply(const Scene& scene, const Prepared& p);
+  fw::Mat4 modelview_for(const Scene& scene, const MeshRange& mesh, double rotation) const;
+  void check(fw::Error e, const char* what) const;
+
+  std::vector<std::byte> memory_;
+  fw::Device device_;
+  Scene scene_;
+  std::vector<MeshRange> meshes_;
+  bool loaded_ = false;
+};
+
+// "kOk", "kBadOpcode", ...: the device's error codes by name (for messages).
+std::string_view error_name(fw::Error e);
+
+}  // namespace tp::host

@@ -1,0 +1,63 @@
+#include "host/image_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <memory>
+
+namespace tp::host {
+
+namespace {
+
+template <class T>
+void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc type,
+                 const T* data) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) throw ImageIoError("cannot write " + file.string() + ": " + OIIO::geterror());
+  const OIIO::ImageSpec spec(w, h, 3, type);
+  if (!out->open(file.string(), spec) || !out->write_image(type, data) || !out->close())
+    throw ImageIoError("cannot write " + file.string() + ": " + out->geterror());
+}
+
+// Reads all pixels as `type`, keeping the first three channels (grey is replicated).
+template <class T>
+std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type, int& w, int& h) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) throw ImageIoError("cannot read " + file.string() + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  w = spec.width;
+  h = spec.height;
+  const int nc = spec.nchannels;
+  std::vector<T> all(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(nc));
+  if (!in->read_image(0, 0, 0, nc, type, all.data()))
+    throw ImageIoError("cannot read " + file.string() + ": " + in->geterror());
+  in->close();
+  std::vector<T> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+  for (std::size_t p = 0; p < rgb.size() / 3; ++p)
+    for (std::size_t k = 0; k < 3; ++k)
+      rgb[3 * p + k] = all[p * static_cast<std::size_t>(nc) + std::min<std::size_t>(k, static_cast<std::size_t>(nc) - 1)];
+  return rgb;
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& file, const Image8& im) {
+  write_image(file, im.width, im.height, OIIO::TypeDesc::UINT8, im.rgb.data());
+}
+
+Image8 read_png(const std::filesystem::path& file) {
+  Image8 im;
+  im.rgb = read_image<std::uint8_t>(file, OIIO::TypeDesc::UINT8, im.width, im.height);
+  return im;
+}
+
+void write_exr(const std::filesystem::path& file, const FloatImage& im) {
+  write_image(file, im.width, im.height, OIIO::TypeDesc::FLOAT, im.rgb.data());
+}
+
+FloatImage read_exr(const std::filesystem::path& file) {
+  FloatImage im;
+  im.rgb = read_image<float>(file, OIIO::TypeDesc::FLOAT, im.width, im.height);
+  return im;
+}
+
+}  // namespace tp::host

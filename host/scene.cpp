@@ -1,0 +1,332 @@
+// Scene files: strict JSON reading (every key known, every number finite and in range) with
+// errors that name file, line and JSON pointer; matrices and eye-space lights.
+#include "host/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace tp::host {
+
+using nlohmann::json;
+
+SceneError::SceneError(std::string file, int line, std::string path, std::string problem)
+    : std::runtime_error(file + ":" + std::to_string(line) + ": " +
+                         (path.empty() ? std::string() : path + ": ") + problem),
+      file_(std::move(file)), line_(line), path_(std::move(path)), problem_(std::move(problem)) {}
+
+namespace {
+
+// Everything a check needs to report an error: the file, its text (for line numbers).
+struct Reader {
+  std::string file;
+  std::string_view text;
+  std::filesystem::path base_dir;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+    throw SceneError(file, line_of_pointer(text, path), path, problem);
+  }
+
+  // Rejects keys not in `allowed` (typos must not be ignored) and missing `required` ones.
+  void keys(const json& j, const std::string& path, std::initializer_list<const char*> allowed,
+            std::initializer_list<const char*> required = {}) const {
+    if (!j.is_object()) fail(path, "expected an object, got " + std::string(j.type_name()));
+    std::set<std::string> ok(allowed.begin(), allowed.end());
+    for (const auto& [k, v] : j.items()) {
+      if (!ok.count(k)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(path + "/" + k, "unknown key \"" + k + "\" (allowed: " + list + ")");
+      }
+    }
+    for (const char* r : required)
+      if (!j.contains(r)) fail(path, std::string("missing key \"") + r + "\"");
+  }
+
+  double number(const json& j, const std::string& path, double lo, double hi) const {
+    if (!j.is_number()) fail(path, "expected a number, got " + std::string(j.type_name()));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(path, "number is not finite");
+    if (v < lo || v > hi) {
+      std::ostringstream s;
+      s << "value " << v << " out of range [" << lo << ", " << hi << "]";
+      fail(path, s.str());
+    }
+    return v;
+  }
+
+  int integer(const json& j, const std::string& path, int lo, int hi) const {
+    if (!j.is_number_integer()) fail(path, "expected an integer, got " + std::string(j.type_name()));
+    const auto v = j.get<long long>();
+    if (v < lo || v > hi)
+      fail(path, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+    return static_cast<int>(v);
+  }
+
+  std::string string(const json& j, const std::string& path) const {
+    if (!j.is_string()) fail(path, "expected a string, got " + std::string(j.type_name()));
+    return j.get<std::string>();
+  }
+
+  bool boolean(const json& j, const std::string& path) const {
+    if (!j.is_boolean()) fail(path, "expected true or false, got " + std::string(j.type_name()));
+    return j.get<bool>();
+  }
+
+  glm::dvec3 vec3(const json& j, const std::string& path, double lo, double hi) const {
+    if (!j.is_array() || j.size() != 3) fail(path, "expected an array of 3 numbers");
+    glm::dvec3 v;
+    for (int i = 0; i < 3; ++i)
+      v[i] = number(j[static_cast<std::size_t>(i)], path + "/" + std::to_string(i), lo, hi);
+    return v;
+  }
+};
+
+constexpr double kCoordLimit = 1e4;  // scene coordinates: far inside what the device converts
+constexpr double kColourLimit = 16;  // light intensities and object colours
+
+Camera read_camera(const Reader& r, const json& j, const std::string& p) {
+  Camera c;
+  r.keys(j, p, {"type", "extents", "near", "far", "position", "target", "up", "fov_y"}, {"type"});
+  const std::string type = r.string(j["type"], p + "/type");
+  if (type == "orthographic") {
+    c.kind = CameraKind::Orthographic;
+    r.keys(j, p, {"type", "extents", "near", "far"});
+    if (j.contains("extents")) {
+      const json& e = j["extents"];
+      if (!e.is_array() || e.size() != 4)
+        r.fail(p + "/extents", "expected [left, right, bottom, top]");
+      double* dst[4] = {&c.left, &c.right, &c.bottom, &c.top};
+      for (std::size_t i = 0; i < 4; ++i)
+        *dst[i] = r.number(e[i], p + "/extents/" + std::to_string(i), -kCoordLimit, kCoordLimit);
+      if (!(c.left < c.right) || !(c.bottom < c.top))
+        r.fail(p + "/extents", "need left < right and bottom < top");
+    }
+  } else if (type == "perspective") {
+    c.kind = CameraKind::Perspective;
+    r.keys(j, p, {"type", "position", "target", "up", "fov_y", "near", "far"},
+           {"position", "target", "fov_y"});
+    c.position = r.vec3(j["position"], p + "/position", -kCoordLimit, kCoordLimit);
+    c.target = r.vec3(j["target"], p + "/target", -kCoordLimit, kCoordLimit);
+    if (j.contains("up")) c.up = r.vec3(j["up"], p + "/up", -kCoordLimit, kCoordLimit);
+    c.fov_y_deg = r.number(j["fov_y"], p + "/fov_y", 1, 179);
+    c.near = 0.1;
+    c.far = 100;
+    const glm::dvec3 fwd = c.target - c.position;
+    if (glm::length(fwd) < 1e-9) r.fail(p + "/target", "target equals position");
+    if (glm::length(glm::cross(fwd, c.up)) < 1e-9 * glm::length(fwd) * glm::length(c.up))
+      r.fail(p + "/up", "up is zero or parallel to the viewing direction");
+  } else {
+    r.fail(p + "/type", "unknown camera type \"" + type + "\" (orthographic, perspective)");
+  }
+  if (j.contains("near")) c.near = r.number(j["near"], p + "/near", -kCoordLimit, kCoordLimit);
+  if (j.contains("far")) c.far = r.number(j["far"], p + "/far", -kCoordLimit, kCoordLimit);
+  if (c.kind == CameraKind::Perspective && !(c.near > 0))
+    r.fail(p + "/near", "a perspective near plane must be > 0");
+  if (!(c.far > c.near)) r.fail(p + "/far", "far must be greater than near");
+  return c;
+}
+
+Light read_light(const Reader& r, const json& j, const std::string& p) {
+  Light l;
+  r.keys(j, p, {"type", "position", "direction", "colour"}, {"type"});
+  const std::string type = r.string(j["type"], p + "/type");
+  if (type == "point") {
+    l.kind = LightKind::Point;
+    r.keys(j, p, {"type", "position", "colour"}, {"position"});
+    l.vector = r.vec3(j["position"], p + "/position", -kCoordLimit, kCoordLimit);
+  } else if (type == "directional") {
+    l.kind = LightKind::Directional;
+    r.keys(j, p, {"type", "direction", "colour"}, {"direction"});
+    l.vector = r.vec3(j["direction"], p + "/direction", -kCoordLimit, kCoordLimit);
+    if (glm::length(l.vector) < 1e-9) r.fail(p + "/direction", "direction is zero");
+    l.vector = glm::normalize(l.vector);
+  } else {
+    r.fail(p + "/type", "unknown light type \"" + type + "\" (point, directional)");
+  }
+  if (j.contains("colour")) l.colour = r.vec3(j["colour"], p + "/colour", 0, kColourLimit);
+  return l;
+}
+
+Material read_material(const Reader& r, const json& j, const std::string& p) {
+  Material m;
+  r.keys(j, p, {"colour", "ka", "kd", "ks", "n", "a", "b"});
+  if (j.contains("colour")) m.colour = r.vec3(j["colour"], p + "/colour", 0, 1);
+  if (j.contains("ka")) m.ka = r.number(j["ka"], p + "/ka", 0, 1);
+  if (j.contains("kd")) m.kd = r.number(j["kd"], p + "/kd", 0, 1);
+  if (j.contains("ks")) m.ks = r.number(j["ks"], p + "/ks", 0, 1);
+  if (j.contains("n")) m.n = r.number(j["n"], p + "/n", 1, 10000);
+  if (j.contains("a") != j.contains("b")) r.fail(p, "give both \"a\" and \"b\" or neither");
+  if (j.contains("a")) {
+    // Kuijk-Blake f(θ): 0 < a < b <= π/2 (f is 1 − θ²/(ab) near 0 and 0 beyond b).
+    m.a = r.number(j["a"], p + "/a", 1e-6, 1.5707963267948966);
+    m.b = r.number(j["b"], p + "/b", 1e-6, 1.5707963267948966);
+    if (!(*m.a < *m.b)) r.fail(p + "/b", "need a < b");
+  }
+  return m;
+}
+
+Transform read_transform(const Reader& r, const json& j, const std::string& p) {
+  Transform t;
+  r.keys(j, p, {"translate", "rotate", "scale"});
+  if (j.contains("translate"))
+    t.translate = r.vec3(j["translate"], p + "/translate", -kCoordLimit, kCoordLimit);
+  if (j.contains("rotate")) {
+    const json& rot = j["rotate"];
+    r.keys(rot, p + "/rotate", {"axis", "degrees"}, {"axis", "degrees"});
+    t.rotate_axis = r.vec3(rot["axis"], p + "/rotate/axis", -kCoordLimit, kCoordLimit);
+    if (glm::length(t.rotate_axis) < 1e-9) r.fail(p + "/rotate/axis", "axis is zero");
+    t.rotate_deg = r.number(rot["degrees"], p + "/rotate/degrees", -360, 360);
+  }
+  if (j.contains("scale")) t.scale = r.number(j["scale"], p + "/scale", 1e-6, kCoordLimit);
+  return t;
+}
+
+MeshSpec read_mesh(const Reader& r, const json& j, const std::string& p) {
+  MeshSpec m;
+  r.keys(j, p, {"obj", "generator", "params", "transform"});
+  if (j.contains("obj") == j.contains("generator"))
+    r.fail(p, "give exactly one of \"obj\" and \"generator\"");
+  if (j.contains("transform")) m.transform = read_transform(r, j["transform"], p + "/transform");
+  if (j.contains("obj")) {
+    if (j.contains("params")) r.fail(p + "/params", "\"params\" only goes with \"generator\"");
+    const std::filesystem::path rel = r.string(j["obj"], p + "/obj");
+    m.obj = rel.is_absolute() ? rel : r.base_dir / rel;
+    if (!std::filesystem::is_regular_file(m.obj))
+      r.fail(p + "/obj", "mesh file not found: " + m.obj.string());
+    try {
+      m.mesh = load_obj(m.obj);
+    } catch (const MeshError& e) {
+      r.fail(p + "/obj", e.what());
+    }
+  } else {
+    m.generator = r.string(j["generator"], p + "/generator");
+    if (j.contains("params")) {
+      m.params = j["params"];
+      if (!m.params.is_object()) r.fail(p + "/params", "expected an object");
+    }
+    try {
+      m.mesh = generate_mesh(m.generator, m.params);
+    } catch (const MeshError& e) {
+      // Messages start with the offending parameter name; point at it when it exists.
+      const std::string msg = e.what();
+      const std::string key = msg.substr(0, msg.find(':'));
+      if (key == "generator") r.fail(p + "/generator", msg);
+      if (m.params.contains(key)) r.fail(p + "/params/" + key, msg);
+      r.fail(m.params.empty() ? p + "/generator" : p + "/params", msg);
+    }
+  }
+  return m;
+}
+
+Scene read_scene(const Reader& r, const json& j) {
+  Scene s;
+  s.file = r.file;
+  r.keys(j, "", {"name", "resolution", "camera", "lights", "material", "meshes", "method",
+                 "background", "cull"},
+         {"camera", "lights", "meshes"});
+  if (j.contains("name")) s.name = r.string(j["name"], "/name");
+  if (j.contains("resolution")) {
+    const json& res = j["resolution"];
+    if (!res.is_array() || res.size() != 2) r.fail("/resolution", "expected [width, height]");
+    s.width = r.integer(res[0], "/resolution/0", 1, 8192);
+    s.height = r.integer(res[1], "/resolution/1", 1, 8192);
+  }
+  s.camera = read_camera(r, j["camera"], "/camera");
+  const json& lights = j["lights"];
+  if (!lights.is_array()) r.fail("/lights", "expected an array");
+  if (lights.size() > static_cast<std::size_t>(kMaxLights))
+    r.fail("/lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
+                          std::to_string(lights.size()));
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    s.lights.push_back(read_light(r, lights[i], "/lights/" + std::to_string(i)));
+  if (j.contains("material")) s.material = read_material(r, j["material"], "/material");
+  const json& meshes = j["meshes"];
+  if (!meshes.is_array() || meshes.empty()) r.fail("/meshes", "expected a non-empty array");
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    s.meshes.push_back(read_mesh(r, meshes[i], "/meshes/" + std::to_string(i)));
+  if (j.contains("method")) s.method = r.string(j["method"], "/method");
+  if (j.contains("background")) s.background = r.vec3(j["background"], "/background", 0, 1);
+  if (j.contains("cull")) s.cull_backfaces = r.boolean(j["cull"], "/cull");
+  return s;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& file,
+                  const std::filesystem::path& base_dir) {
+  json j;
+  try {
+    j = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    // e.byte is 1-based and points just past the offending character.
+    const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
+    throw SceneError(file, line_of_offset(text, at), "", std::string("malformed JSON: ") + e.what());
+  } catch (const json::exception& e) {
+    // E.g. out_of_range 406 "number overflow parsing '1e999'": no position, but the message
+    // quotes the offending token; its first occurrence gives the line.
+    const std::string msg = e.what();
+    const auto q0 = msg.find('\''), q1 = msg.rfind('\'');
+    int line = 0;
+    if (q0 != std::string::npos && q1 > q0) {
+      const auto at = text.find(msg.substr(q0 + 1, q1 - q0 - 1));
+      if (at != std::string_view::npos) line = line_of_offset(text, at);
+    }
+    throw SceneError(file, line, "", "malformed JSON: " + msg);
+  }
+  const Reader r{file, text, base_dir};
+  return read_scene(r, j);
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file.string(), 0, "", "cannot open scene file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  return parse_scene(text, file.string(), file.parent_path());
+}
+
+glm::dmat4 Transform::matrix() const {
+  glm::dmat4 m = glm::translate(glm::dmat4(1.0), translate);
+  if (rotate_deg != 0) m = glm::rotate(m, glm::radians(rotate_deg), glm::normalize(rotate_axis));
+  return glm::scale(m, glm::dvec3(scale));
+}
+
+glm::dmat4 view_matrix(const Camera& c) {
+  if (c.kind == CameraKind::Orthographic) return glm::dmat4(1.0);  // world = eye space
+  return glm::lookAt(c.position, c.target, c.up);
+}
+
+glm::dmat4 projection_matrix(const Camera& c, int width, int height) {
+  if (c.kind == CameraKind::Orthographic)
+    return glm::ortho(c.left, c.right, c.bottom, c.top, c.near, c.far);
+  return glm::perspective(glm::radians(c.fov_y_deg),
+                          static_cast<double>(width) / static_cast<double>(height), c.near, c.far);
+}
+
+glm::dmat4 model_view(const Scene& s, const MeshSpec& m) {
+  return view_matrix(s.camera) * m.transform.matrix();
+}
+
+bool eye_at_infinity(const Camera& c) { return c.kind == CameraKind::Orthographic; }
+
+std::vector<EyeLight> eye_lights(const Scene& s) {
+  const glm::dmat4 v = view_matrix(s.camera);
+  std::vector<EyeLight> out;
+  for (const Light& l : s.lights) {
+    EyeLight e{l.kind, {}, l.colour};
+    if (l.kind == LightKind::Point)
+      e.vector = glm::dvec3(v * glm::dvec4(l.vector, 1.0));
+    else
+      e.vector = glm::normalize(glm::dvec3(v * glm::dvec4(l.vector, 0.0)));
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace tp::host

@@ -1,0 +1,192 @@
+// tinyphong: the command-line tool. Renders scenes with the emulated device, renders the double
+// reference, and compares images (DESIGN §9's measures).
+//
+//   tinyphong render scenes/teapot.json --method gouraud -o teapot.png
+//   tinyphong reference scenes/teapot.json -o ref.png [--exr ref.exr] [--angular]
+//   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
+//   tinyphong methods
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "host/device_renderer.hpp"
+#include "host/image_io.hpp"
+#include "host/metrics.hpp"
+#include "host/reference.hpp"
+#include "host/scene.hpp"
+
+namespace {
+
+using namespace tp::host;
+
+struct SceneOptions {
+  std::string scene;
+  std::string method;
+  std::string size;  // "WxH"
+  double rotate_deg = 0;
+};
+
+void add_scene_options(CLI::App* cmd, SceneOptions& o) {
+  cmd->add_option("scene", o.scene, "scene file (JSON), e.g. scenes/teapot.json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--size", o.size, "override the resolution, WIDTHxHEIGHT (e.g. 1024x1024)");
+  cmd->add_option("--rotate", o.rotate_deg, "rotate the objects about the world y axis (degrees)");
+}
+
+Scene load(const SceneOptions& o) {
+  Scene s = load_scene(o.scene);
+  if (!o.method.empty()) s.method = o.method;
+  if (!o.size.empty()) {
+    int w = 0, h = 0;
+    char x = 0;
+    if (std::sscanf(o.size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
+        h <= 0)
+      throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, got '" + o.size + "'");
+    s.width = w;
+    s.height = h;
+  }
+  return s;
+}
+
+double radians(double deg) { return deg * 3.14159265358979323846 / 180.0; }
+
+void print_counters(const CounterSnapshot& counters) {
+  for (const auto& [name, value] : counters) std::cout << "  " << name << " = " << value << "\n";
+}
+
+void print_comparison(const Comparison& c) {
+  std::cout << "pixels compared:      " << c.covered_both << "\n"
+            << "only in first:        " << c.only_reference << "\n"
+            << "only in second:       " << c.only_evaluated << "\n"
+            << "colour correctness:   " << c.color_correctness << "  (Vlasic eq. 6.1)\n"
+            << "PSNR:                 " << c.psnr_db << " dB\n"
+            << "mean |error|:         " << c.mean_abs << " levels\n"
+            << "max |error|:          " << c.max_abs << " levels\n";
+}
+
+int run_render(const SceneOptions& o, const std::string& out, bool compare_ref) {
+  const Scene scene = load(o);
+  DeviceRenderer device(scene.width, scene.height);
+  device.set_scene(scene);
+  const DeviceFrame frame = device.render(radians(o.rotate_deg));
+  write_png(out, frame.image());
+  std::cout << "rendered " << scene.name << " (" << frame.width << "x" << frame.height << ", "
+            << scene.method << ") in " << frame.render_ms << " ms -> " << out << "\n"
+            << "counters:\n";
+  print_counters(frame.counters);
+  if (compare_ref) {
+    const ReferenceFrame ref = device.render_reference(radians(o.rotate_deg));
+    std::cout << "against the double Phong reference:\n";
+    print_comparison(compare(ref.image(), ref.covered, frame.image(), frame.covered));
+  }
+  return 0;
+}
+
+int run_reference(const SceneOptions& o, const std::string& out, const std::string& exr,
+                  bool angular) {
+  const Scene scene = load(o);
+  DeviceRenderer device(scene.width, scene.height);
+  device.set_scene(scene);  // the same checks as a device render: one definition of "valid"
+  const Interpolation interp = angular ? Interpolation::Angular : Interpolation::Phong;
+  const ReferenceFrame ref = device.render_reference(radians(o.rotate_deg), interp);
+  write_png(out, ref.image());
+  std::cout << "reference (" << (angular ? "angular" : "phong") << ") " << ref.width << "x"
+            << ref.height << " -> " << out << "\n";
+  if (!exr.empty()) {
+    write_exr(exr, ref.linear);
+    std::cout << "linear float image -> " << exr << "\n";
+  }
+  return 0;
+}
+
+int run_compare(const std::string& a, const std::string& b, const std::string& diff,
+                std::optional<int> row) {
+  const Image8 ia = read_png(a), ib = read_png(b);
+  if (ia.width != ib.width || ia.height != ib.height) {
+    std::cerr << "tinyphong compare: " << a << " is " << ia.width << "x" << ia.height << " but "
+              << b << " is " << ib.width << "x" << ib.height << "\n";
+    return 2;
+  }
+  const Mask ma = mask_from_background(ia), mb = mask_from_background(ib);
+  print_comparison(compare(ia, ma, ib, mb));
+  if (!diff.empty()) {
+    write_png(diff, difference_image(ia, ma, ib, mb));
+    std::cout << "difference image (Vlasic eq. 6.2) -> " << diff << "\n";
+  }
+  if (row) {
+    if (*row < 0 || *row >= ia.height) {
+      std::cerr << "tinyphong compare: --row " << *row << " outside 0.." << ia.height - 1 << "\n";
+      return 2;
+    }
+    const auto ca = scanline_curve(ia, ma, *row), cb = scanline_curve(ib, mb, *row);
+    std::cout << "x,first,second  (Vlasic eq. 6.3, row " << *row << ")\n";
+    for (std::size_t x = 0; x < ca.size(); ++x) {
+      if (!ca[x] && !cb[x]) continue;
+      std::cout << x << "," << (ca[x] ? std::to_string(*ca[x]) : "") << ","
+                << (cb[x] ? std::to_string(*cb[x]) : "") << "\n";
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tinyphong: an emulated integer-only GPU and its desktop tools"};
+  app.require_subcommand(1);
+
+  SceneOptions render_opts;
+  std::string render_out = "out.png";
+  bool render_compare = false;
+  auto* render = app.add_subcommand("render", "render a scene with the emulated device");
+  add_scene_options(render, render_opts);
+  render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)");
+  render->add_option("-o,--output", render_out, "PNG file to write");
+  render->add_flag("--compare", render_compare,
+                   "also render the double reference and print the error metrics");
+
+  SceneOptions ref_opts;
+  std::string ref_out = "reference.png", ref_exr;
+  bool ref_angular = false;
+  auto* reference = app.add_subcommand("reference", "render the double-precision reference");
+  add_scene_options(reference, ref_opts);
+  reference->add_option("-o,--output", ref_out, "PNG file to write (8-bit)");
+  reference->add_option("--exr", ref_exr, "also write the linear float image as OpenEXR");
+  reference->add_flag("--angular", ref_angular,
+                      "slerp the normals (Kuijk-Blake's interpolation) instead of Phong's");
+
+  std::string cmp_a, cmp_b, cmp_diff;
+  std::optional<int> cmp_row;
+  auto* cmp = app.add_subcommand("compare", "error metrics of SECOND against FIRST (the reference)");
+  cmp->add_option("first", cmp_a, "reference image")->required()->check(CLI::ExistingFile);
+  cmp->add_option("second", cmp_b, "evaluated image")->required()->check(CLI::ExistingFile);
+  cmp->add_option("--diff", cmp_diff, "write the gamma-enhanced difference image (eq. 6.2)");
+  cmp->add_option("--row", cmp_row, "print the illumination curve of this row (eq. 6.3) as CSV");
+
+  auto* methods = app.add_subcommand("methods", "list the shading methods");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*render) return run_render(render_opts, render_out, render_compare);
+    if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
+    if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row);
+    if (*methods) {
+      for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
+      return 0;
+    }
+  } catch (const SceneError& e) {
+    std::cerr << "tinyphong: " << e.what() << "\n";
+    return 1;
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "tinyphong: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

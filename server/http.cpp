@@ -1,0 +1,72 @@
+#include "server/http.hpp"
+
+#include "server/assets.hpp"
+
+namespace tp::server {
+namespace {
+
+Response plain(const Request& req, http::status st, std::string body) {
+  Response res{st, req.version()};
+  res.set(http::field::server, "tinyphong");
+  res.set(http::field::content_type, "text/plain; charset=utf-8");
+  res.keep_alive(req.keep_alive());
+  res.body() = std::move(body);
+  res.prepare_payload();
+  return res;
+}
+
+}  // namespace
+
+bool HostPolicy::host_ok(std::string_view host) const {
+  const std::string suffix = ":" + std::to_string(port);
+  for (const auto& n : names)
+    if (host == n + suffix) return true;
+  return false;
+}
+
+bool HostPolicy::origin_ok(std::string_view origin) const {
+  if (origin.empty()) return true;  // browsers always send Origin on a WebSocket; tools may not
+  constexpr std::string_view scheme = "http://";
+  if (origin.substr(0, scheme.size()) != scheme) return false;
+  return host_ok(origin.substr(scheme.size()));
+}
+
+Response route(const Request& req, const HostPolicy& policy) {
+  if (!policy.host_ok(req[http::field::host])) return plain(req, http::status::forbidden, "forbidden host\n");
+  if (req.method() != http::verb::get && req.method() != http::verb::head) {
+    auto res = plain(req, http::status::method_not_allowed, "GET only\n");
+    res.set(http::field::allow, "GET, HEAD");
+    return res;
+  }
+  std::string_view target = req.target();
+  if (target.find('?') != std::string_view::npos) target = target.substr(0, target.find('?'));
+  if (target == "/") target = "/index.html";
+  for (const Asset& a : assets()) {
+    if (a.path != target) continue;
+    Response res{http::status::ok, req.version()};
+    res.set(http::field::server, "tinyphong");
+    res.set(http::field::content_type, a.mime);
+    res.set(http::field::cache_control, "no-store");
+    // The page runs only its own scripts and talks only to this server.
+    res.set("Content-Security-Policy",
+            "default-src 'self'; connect-src 'self' ws: ; img-src 'self' data:; frame-ancestors 'none'");
+    res.set("X-Content-Type-Options", "nosniff");
+    res.keep_alive(req.keep_alive());
+    if (req.method() == http::verb::get) res.body() = std::string(a.body);
+    res.prepare_payload();
+    if (req.method() == http::verb::head) res.content_length(a.body.size());
+    return res;
+  }
+  return plain(req, http::status::not_found, "not found\n");
+}
+
+std::string check_upgrade(const Request& req, const HostPolicy& policy, http::status& status) {
+  status = http::status::forbidden;
+  if (!policy.host_ok(req[http::field::host])) return "forbidden host";
+  if (!policy.origin_ok(req[http::field::origin])) return "forbidden origin";
+  status = http::status::not_found;
+  if (req.target() != "/ws") return "no WebSocket at this path";
+  return "";
+}
+
+}  // namespace tp::server

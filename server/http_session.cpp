@@ -1,0 +1,65 @@
+#include "server/http_session.hpp"
+
+#include <boost/asio/dispatch.hpp>
+
+namespace tp::server {
+
+HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerContext& ctx)
+    : stream_(std::move(socket)), ctx_(ctx) {}
+
+void HttpSession::run() {
+  net::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::do_read, shared_from_this()));
+}
+
+void HttpSession::do_read() {
+  parser_.emplace();
+  parser_->header_limit(8 * 1024);  // requests are tiny: GETs and the upgrade
+  parser_->body_limit(1024);
+  stream_.expires_after(std::chrono::seconds(10));
+  http::async_read(stream_, buffer_, *parser_,
+                   beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
+}
+
+void HttpSession::on_read(beast::error_code ec, std::size_t) {
+  if (ec) {  // end of stream, timeout, or a malformed/oversized request: just close
+    beast::error_code ignored;
+    stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
+    return;
+  }
+  Request req = parser_->release();
+  if (websocket::is_upgrade(req)) {
+    http::status st{};
+    if (auto why = check_upgrade(req, ctx_.policy, st); !why.empty()) {
+      Response res{st, req.version()};
+      res.set(http::field::content_type, "text/plain; charset=utf-8");
+      res.body() = why + "\n";
+      res.keep_alive(false);
+      res.prepare_payload();
+      send(std::move(res));
+      return;
+    }
+    std::make_shared<WsSession>(std::move(stream_), ctx_.hub, ctx_.loop, ctx_.limits)->run(std::move(req));
+    return;
+  }
+  send(route(req, ctx_.policy));
+}
+
+void HttpSession::send(Response res) {
+  res_ = std::make_shared<Response>(std::move(res));
+  const bool close = res_->need_eof();
+  http::async_write(stream_, *res_,
+                    beast::bind_front_handler(&HttpSession::on_write, shared_from_this(), close));
+}
+
+void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
+  res_.reset();
+  if (ec) return;
+  if (close) {
+    beast::error_code ignored;
+    stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
+    return;
+  }
+  do_read();
+}
+
+}  // namespace tp::server

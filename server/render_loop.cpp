@@ -1,0 +1,259 @@
+#include "server/render_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include <nlohmann/json.hpp>
+
+namespace tp::server {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+ErrorStats compare_images(const Image& d, const Image& r) {
+  ErrorStats e;
+  if (d.width != r.width || d.height != r.height) return e;
+  const std::size_t n = static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height);
+  double sum = 0, sq = 0;
+  int mx = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!d.covered[i] || !r.covered[i]) continue;  // conventions: covered in both only
+    ++e.pixels;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const int diff = std::abs(int(d.rgb[3 * i + c]) - int(r.rgb[3 * i + c]));
+      sum += diff;
+      sq += double(diff) * diff;
+      mx = std::max(mx, diff);
+    }
+  }
+  if (e.pixels == 0) return e;
+  const double cnt = 3.0 * double(e.pixels);
+  e.correctness = 1.0 - sum / (255.0 * cnt);  // Vlasic's colour correctness c
+  e.mean_levels = sum / cnt;
+  e.max_levels = mx;
+  e.psnr = sq == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / (sq / cnt));
+  return e;
+}
+
+RenderLoop::RenderLoop(std::unique_ptr<FrameSource> src, Hub& hub, LoopOptions opt)
+    : src_(std::move(src)), hub_(hub), opt_(opt) {}
+
+RenderLoop::~RenderLoop() { stop(); }
+
+void RenderLoop::start() {
+  {
+    std::lock_guard lk(m_);
+    running_ = true;
+  }
+  {
+    std::lock_guard lk(rm_);
+    ref_running_ = true;
+  }
+  publish_state();
+  thread_ = std::thread([this] { run(); });
+  ref_thread_ = std::thread([this] { ref_run(); });
+}
+
+void RenderLoop::stop() {
+  {
+    std::lock_guard lk(m_);
+    running_ = false;
+  }
+  cv_.notify_all();
+  {
+    std::lock_guard lk(rm_);
+    ref_running_ = false;
+  }
+  rcv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  if (ref_thread_.joinable()) ref_thread_.join();
+}
+
+std::string RenderLoop::submit(Command c, Done done) {
+  {
+    std::lock_guard lk(m_);
+    if (jobs_.size() >= opt_.max_pending_commands) return "server busy: too many pending commands";
+    jobs_.push_back({std::move(c), std::move(done)});
+  }
+  cv_.notify_all();
+  return "";
+}
+
+TextPtr RenderLoop::state_message() {
+  std::lock_guard lk(m_);
+  return state_;
+}
+
+void RenderLoop::publish_state() {
+  const ViewSettings& s = src_->settings();
+  json lights = json::array();
+  for (const auto& l : s.lights)
+    lights.push_back({{"kind", l.point ? "point" : "directional"}, {"vector", l.vector}, {"color", l.color}});
+  json j = {{"type", "state"},     {"scene", s.scene},       {"method", s.method},
+            {"use_ab", s.use_ab},  {"n", s.n},               {"a", s.a},
+            {"b", s.b},            {"ka", s.ka},             {"kd", s.kd},
+            {"ks", s.ks},          {"color", s.color},       {"lights", lights},
+            {"width", s.width},    {"height", s.height},     {"animate", flags_.animate},
+            {"paused", flags_.paused}, {"reference", flags_.reference},
+            {"methods", src_->methods()}, {"scenes", src_->scenes()}};
+  auto msg = std::make_shared<const std::string>(j.dump());
+  {
+    std::lock_guard lk(m_);
+    state_ = msg;
+    reference_on_ = flags_.reference;
+    if (!flags_.reference) error_.reset();
+  }
+  hub_.set_state(msg);
+}
+
+bool RenderLoop::apply_pending() {
+  std::deque<Job> jobs;
+  {
+    std::lock_guard lk(m_);
+    jobs.swap(jobs_);
+  }
+  bool changed = false;
+  for (auto& j : jobs) {
+    const bool ref_before = flags_.reference;
+    std::string err = apply_control(j.cmd, *src_, flags_, step_);
+    if (err.empty()) {
+      changed = true;
+      const auto& t = j.cmd.type;
+      if (t != "animate" && t != "pause" && t != "step" && t != "reference") dirty_ = true;
+      if (flags_.reference && !ref_before) offer_reference();
+    }
+    j.done(err);
+  }
+  if (changed) publish_state();
+  return changed;
+}
+
+void RenderLoop::render_and_publish(double rotation) {
+  RenderedFrame f = src_->render(rotation);
+  const Image& img = f.image;
+  const auto sum = fnv1a64(img.rgb);
+  bool published = false;
+  // Identical consecutive frames (same size and checksum) are not re-sent.
+  if (sum != last_checksum_ || img.width != last_w_ || img.height != last_h_) {
+    const std::uint32_t id = next_id_++;
+    hub_.publish_frame(encode_frame(FrameKind::device, id, img.width, img.height, img.rgb, f.render_ms));
+    last_checksum_ = sum;
+    last_w_ = img.width;
+    last_h_ = img.height;
+    last_ = LastFrame{rotation, id, img};
+    if (flags_.reference) offer_reference();
+    published = true;
+  }
+  std::lock_guard lk(m_);
+  ++frames_rendered_;
+  render_ms_ = f.render_ms;
+  counters_ = std::move(f.counters);
+  if (published) {
+    ++frames_published_;
+    frame_id_ = next_id_ - 1;
+    frame_checksum_ = sum;
+  }
+}
+
+void RenderLoop::run() {
+  auto last = Clock::now();
+  auto window_start = last;
+  std::uint64_t window_frames = 0;
+  for (;;) {
+    {
+      std::unique_lock lk(m_);
+      if (!running_) return;
+    }
+    apply_pending();
+    const bool animate = flags_.animate && !flags_.paused;
+    const bool render = (!flags_.paused && (flags_.animate || dirty_)) || step_;
+    const auto now = Clock::now();
+    const double dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
+    last = now;
+    if (!render) {
+      std::unique_lock lk(m_);
+      cv_.wait_for(lk, std::chrono::milliseconds(100), [&] { return !running_ || !jobs_.empty(); });
+      continue;
+    }
+    if (animate) rotation_ += opt_.radians_per_second * dt;
+    if (step_ && !animate) rotation_ += opt_.radians_per_second / 30.0;  // one 30 fps step
+    rotation_ = std::fmod(rotation_, 2 * 3.14159265358979323846);
+    step_ = false;
+    dirty_ = false;
+    const auto t0 = Clock::now();
+    render_and_publish(rotation_);
+    ++window_frames;
+    const auto t1 = Clock::now();
+    {
+      std::lock_guard lk(m_);
+      loop_ms_ = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      const double w = std::chrono::duration<double>(t1 - window_start).count();
+      if (w >= 1.0) {
+        fps_ = double(window_frames) / w;
+        window_frames = 0;
+        window_start = t1;
+      }
+    }
+    // Pace to max_fps; wake early for control messages.
+    const auto next = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / opt_.max_fps));
+    std::unique_lock lk(m_);
+    cv_.wait_until(lk, next, [&] { return !running_ || !jobs_.empty(); });
+  }
+}
+
+void RenderLoop::offer_reference() {
+  if (!last_) return;
+  {
+    std::lock_guard lk(rm_);
+    // Latest only: an unstarted older job is replaced. The task snapshots the scene here, on
+    // the render-loop thread, so the worker never touches the live source.
+    ref_job_ = RefJob{src_->reference_task(last_->rotation), last_->frame_id, last_->device};
+  }
+  rcv_.notify_all();
+}
+
+void RenderLoop::ref_run() {
+  for (;;) {
+    RefJob job;
+    {
+      std::unique_lock lk(rm_);
+      rcv_.wait(lk, [&] { return !ref_running_ || ref_job_.has_value(); });
+      if (!ref_running_) return;
+      job = std::move(*ref_job_);
+      ref_job_.reset();
+    }
+    Image ref = job.task();
+    ErrorStats e = compare_images(job.device, ref);
+    e.frame_id = job.frame_id;
+    {
+      std::lock_guard lk(m_);
+      if (!reference_on_) continue;  // switched off meanwhile
+      error_ = e;
+    }
+    hub_.publish_frame(encode_frame(FrameKind::reference, job.frame_id, ref.width, ref.height, ref.rgb, 0));
+  }
+}
+
+std::string RenderLoop::stats_message(std::size_t clients) {
+  std::lock_guard lk(m_);
+  json counters = json::object();
+  for (const auto& [k, v] : counters_) counters[k] = v;
+  json j = {{"type", "stats"},
+            {"fps", fps_},
+            {"render_ms", render_ms_},
+            {"loop_ms", loop_ms_},
+            {"frames_rendered", frames_rendered_},
+            {"frames_published", frames_published_},
+            {"frame", {{"id", frame_id_}, {"checksum", hex64(frame_checksum_)}}},
+            {"clients", clients},
+            {"counters", counters}};
+  if (error_)
+    j["error"] = {{"frame_id", error_->frame_id},       {"pixels", error_->pixels},
+                  {"correctness", error_->correctness}, {"mean_levels", error_->mean_levels},
+                  {"max_levels", error_->max_levels},   {"psnr", error_->psnr}};
+  return j.dump();
+}
+
+}  // namespace tp::server

@@ -1,0 +1,90 @@
+// The render loop: its own thread runs the device continuously and publishes each new frame
+// into the hub's "latest" slot; it never waits for a client. Control commands are queued and
+// applied between frames. The double reference runs on a second worker thread (latest-only),
+// never in the render loop.
+#pragma once
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "server/control.hpp"
+#include "server/frame_source.hpp"
+#include "server/hub.hpp"
+
+namespace tp::server {
+
+struct LoopOptions {
+  double max_fps = 60;              // pacing cap, so an idle viewer does not burn a core
+  double radians_per_second = 0.6;  // animated model rotation
+  std::size_t max_pending_commands = 64;
+};
+
+// Vlasic's colour correctness and level errors over pixels covered in both images (DESIGN §9).
+struct ErrorStats {
+  std::uint32_t frame_id = 0;
+  std::size_t pixels = 0;
+  double correctness = 1, mean_levels = 0, max_levels = 0, psnr = 0;
+};
+ErrorStats compare_images(const Image& device, const Image& reference);
+
+class RenderLoop {
+ public:
+  RenderLoop(std::unique_ptr<FrameSource> src, Hub& hub, LoopOptions opt);
+  ~RenderLoop();
+  void start();
+  void stop();
+  using Done = std::function<void(std::string error)>;
+  std::string submit(Command c, Done done);  // "" or why it was refused (queue full)
+  TextPtr state_message();
+  std::string stats_message(std::size_t clients);
+
+ private:
+  struct Job { Command cmd; Done done; };
+  struct RefJob { std::function<Image()> task; std::uint32_t frame_id; Image device; };
+  struct LastFrame { double rotation; std::uint32_t frame_id; Image device; };
+  void run();
+  bool apply_pending();  // true if anything changed
+  void render_and_publish(double rotation);
+  void publish_state();
+  void offer_reference();
+  void ref_run();
+
+  std::unique_ptr<FrameSource> src_;
+  Hub& hub_;
+  LoopOptions opt_;
+  std::thread thread_, ref_thread_;
+  std::mutex m_;  // guards jobs_, running_, stats and the state message
+  std::condition_variable cv_;
+  std::deque<Job> jobs_;
+  bool running_ = false;
+  TextPtr state_;
+  // Render-loop-thread only.
+  LoopFlags flags_;
+  bool step_ = false, dirty_ = true;
+  double rotation_ = 0;
+  std::uint32_t next_id_ = 1;
+  std::uint64_t last_checksum_ = 0;
+  int last_w_ = 0, last_h_ = 0;
+  std::optional<LastFrame> last_;  // the last published device frame, for a late reference request
+  // Stats (under m_).
+  double fps_ = 0, render_ms_ = 0, loop_ms_ = 0;
+  std::uint64_t frames_rendered_ = 0, frames_published_ = 0;
+  std::vector<std::pair<std::string, std::uint64_t>> counters_;
+  std::uint32_t frame_id_ = 0;
+  std::uint64_t frame_checksum_ = 0;
+  std::optional<ErrorStats> error_;
+  bool reference_on_ = false;
+  // Reference worker.
+  std::mutex rm_;
+  std::condition_variable rcv_;
+  std::optional<RefJob> ref_job_;
+  bool ref_running_ = false;
+};
+
+}  // namespace tp::server

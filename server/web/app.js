@@ -1,0 +1,278 @@
+// tinyphong viewer: plain JS, no build step (docs/SERVER.md explains why).
+// Protocol: binary frame messages (40-byte header + RGB888) and small JSON text messages.
+'use strict';
+
+const $ = (id) => document.getElementById(id);
+// What the end-to-end test reads: the checksum of what was painted, the server's figures.
+const tp = (window.tp = {
+  connected: false, painted: null, framesPainted: 0, refsPainted: 0,
+  state: null, stats: null, replies: [], send: (m) => send(m),
+});
+
+// FNV-1a 64 in two 32-bit halves (the prime is 2^40 + 0x1b3), over RGB only.
+function fnv1a64Rgba(rgba) {
+  let hi = 0xcbf29ce4, lo = 0x84222325;
+  for (let i = 0; i < rgba.length; i += 4) {
+    for (let c = 0; c < 3; ++c) {
+      lo = (lo ^ rgba[i + c]) >>> 0;
+      const t = lo * 0x1b3;
+      const carry = Math.floor(t / 4294967296);
+      const nhi = (Math.imul(hi, 0x1b3) + carry + (lo << 8)) >>> 0;
+      lo = t >>> 0;
+      hi = nhi;
+    }
+  }
+  return hi.toString(16).padStart(8, '0') + lo.toString(16).padStart(8, '0');
+}
+
+function parseHeader(buf) {
+  const v = new DataView(buf);
+  if (buf.byteLength < 40 || v.getUint32(0, false) !== 0x54504642) return null; // "TPFB"
+  const h = {
+    version: v.getUint16(4, true), kind: v.getUint16(6, true), id: v.getUint32(8, true),
+    width: v.getUint16(12, true), height: v.getUint16(14, true), format: v.getUint16(16, true),
+    headerBytes: v.getUint16(18, true), renderUs: v.getUint32(20, true),
+    checksum: v.getUint32(28, true).toString(16).padStart(8, '0') + v.getUint32(24, true).toString(16).padStart(8, '0'),
+    payload: v.getUint32(32, true),
+  };
+  if (h.format !== 1 || h.payload !== h.width * h.height * 3 || buf.byteLength !== h.headerBytes + h.payload) return null;
+  h.rgb = new Uint8Array(buf, h.headerBytes, h.payload);
+  return h;
+}
+
+let zoom = 1;
+const devices = new Map(); // frame id -> device pixels (RGB), the last few, for pairing
+let lastDevice = null, lastRef = null;
+
+function sizeCanvas(cv, w, h) {
+  if (cv.width !== w || cv.height !== h) { cv.width = w; cv.height = h; }
+  cv.style.width = w * zoom + 'px';
+  cv.style.height = h * zoom + 'px';
+}
+
+function paint(cv, w, h, rgb) {
+  sizeCanvas(cv, w, h);
+  const ctx = cv.getContext('2d', { willReadFrequently: true });
+  const img = ctx.createImageData(w, h);
+  const d = img.data;
+  for (let i = 0, j = 0; i < rgb.length; i += 3, j += 4) {
+    d[j] = rgb[i]; d[j + 1] = rgb[i + 1]; d[j + 2] = rgb[i + 2]; d[j + 3] = 255;
+  }
+  ctx.putImageData(img, 0, 0);
+  return ctx;
+}
+
+function onDevice(h) {
+  const ctx = paint($('device'), h.width, h.height, h.rgb);
+  // Prove what reached the screen: checksum of the canvas as painted, not of the message.
+  const painted = fnv1a64Rgba(ctx.getImageData(0, 0, h.width, h.height).data);
+  tp.painted = { id: h.id, checksum: painted, sent: h.checksum, width: h.width, height: h.height };
+  tp.framesPainted++;
+  ack(h.id, 'device');
+  lastDevice = { id: h.id, width: h.width, height: h.height, rgb: h.rgb.slice() };
+  devices.set(h.id, lastDevice);
+  if (devices.size > 8) devices.delete(devices.keys().next().value);
+  $('frame-id').textContent = h.id;
+  $('probe-line').style.display = 'block';
+  updateComparison();
+}
+
+function onReference(h) {
+  paint($('ref'), h.width, h.height, h.rgb);
+  tp.refsPainted++;
+  ack(h.id, 'reference');
+  lastRef = { id: h.id, width: h.width, height: h.height, rgb: h.rgb.slice() };
+  $('ref-id').textContent = '(device frame ' + h.id + ')';
+  updateComparison();
+}
+
+// Vlasic eq. 6.2: gamma-enhanced difference image, 255·(|Δ|/255)^(1/10), channel by channel.
+function updateComparison() {
+  const dev = lastRef ? devices.get(lastRef.id) : null;
+  drawProbe(lastDevice, dev && lastRef);
+  if (!dev || dev.width !== lastRef.width || dev.height !== lastRef.height) return;
+  const lut = new Uint8Array(256);
+  for (let i = 0; i < 256; ++i) lut[i] = Math.round(255 * Math.pow(i / 255, 0.1));
+  const n = dev.width * dev.height * 3, diff = new Uint8Array(n);
+  for (let i = 0; i < n; ++i) diff[i] = lut[Math.abs(dev.rgb[i] - lastRef.rgb[i])];
+  paint($('heat'), dev.width, dev.height, diff);
+}
+
+// Vlasic eq. 6.3: illumination (R+G+B)/(3·255) along one row, device and reference.
+function drawProbe(dev, ref) {
+  const cv = $('probe'), ctx = cv.getContext('2d');
+  ctx.clearRect(0, 0, cv.width, cv.height);
+  if (!dev) return;
+  const row = Math.min(Math.max(0, Number($('row').value) | 0), dev.height - 1);
+  $('probe-line').style.top = (row + 0.5) * zoom + 'px';
+  ctx.strokeStyle = '#333';
+  ctx.strokeRect(0.5, 0.5, cv.width - 1, cv.height - 1);
+  const curve = (img, colour) => {
+    if (!img || img.width !== dev.width || img.height !== dev.height) return;
+    ctx.strokeStyle = colour;
+    ctx.beginPath();
+    for (let x = 0; x < img.width; ++x) {
+      const i = 3 * (row * img.width + x);
+      const v = (img.rgb[i] + img.rgb[i + 1] + img.rgb[i + 2]) / (3 * 255);
+      const px = ((x + 0.5) / img.width) * cv.width, py = (1 - v) * (cv.height - 4) + 2;
+      if (x === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+    }
+    ctx.stroke();
+  };
+  curve(ref ? lastRef : null, '#4af');
+  curve(dev, '#f90');
+}
+
+// ---- connection with exponential back-off and jitter ----
+let ws = null, attempt = 0;
+function send(msg) {
+  if (ws && ws.readyState === WebSocket.OPEN) ws.send(JSON.stringify(msg));
+}
+function ack(id, kind) { send({ type: 'ack', id, kind }); }
+
+function setStatus(text, ok) {
+  const s = $('status');
+  s.textContent = text;
+  s.className = ok ? 'ok' : 'bad';
+}
+
+function connect() {
+  ws = new WebSocket((location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/ws');
+  ws.binaryType = 'arraybuffer';
+  ws.onopen = () => { attempt = 0; tp.connected = true; setStatus('connected', true); };
+  ws.onmessage = (ev) => {
+    if (typeof ev.data === 'string') return onText(JSON.parse(ev.data));
+    const h = parseHeader(ev.data);
+    if (!h) return log('bad frame message');
+    if (h.kind === 0) onDevice(h); else if (h.kind === 1) onReference(h);
+  };
+  ws.onclose = (ev) => {
+    tp.connected = false;
+    // Full jitter: uniformly in [0.5, 1] of an exponentially growing delay, capped at 10 s.
+    const base = Math.min(10000, 250 * 2 ** attempt++);
+    const delay = Math.round(base * (0.5 + 0.5 * Math.random()));
+    setStatus('disconnected (' + (ev.code || '') + '), retrying in ' + (delay / 1000).toFixed(1) + ' s', false);
+    setTimeout(connect, delay);
+  };
+}
+
+function log(text) {
+  const l = $('log');
+  l.textContent = (text + '\n' + l.textContent).slice(0, 4000);
+}
+
+function onText(m) {
+  if (m.type === 'state') return applyState(m);
+  if (m.type === 'stats') return applyStats(m);
+  if (m.type === 'ok' || m.type === 'error') {
+    tp.replies.push(m);
+    if (tp.replies.length > 100) tp.replies.shift();
+    if (m.type === 'error') log('error' + (m.request ? ' (' + m.request + ')' : '') + ': ' + m.error);
+    else if (m.request !== 'ack') log('ok: ' + m.request);
+  }
+}
+
+const toHex = (c) => '#' + c.map((v) => Math.round(Math.min(1, v) * 255).toString(16).padStart(2, '0')).join('');
+const fromHex = (s) => [1, 3, 5].map((i) => parseInt(s.slice(i, i + 2), 16) / 255);
+
+function setValue(id, v) {
+  const el = $(id);
+  if (document.activeElement === el) return; // do not fight the user's typing
+  if (el.type === 'checkbox') el.checked = !!v; else el.value = v;
+}
+
+function fillSelect(id, values, current) {
+  const sel = $(id);
+  if ([...sel.options].map((o) => o.value).join() !== values.join()) {
+    sel.innerHTML = '';
+    for (const v of values) sel.add(new Option(v, v));
+  }
+  sel.value = current;
+}
+
+function applyState(s) {
+  tp.state = s;
+  fillSelect('scene', s.scenes, s.scene);
+  fillSelect('method', s.methods, s.method);
+  for (const k of ['width', 'height', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
+  setValue('a', Number(s.a).toFixed(4));
+  setValue('b', Number(s.b).toFixed(4));
+  $('use-ab').checked = s.use_ab;
+  $('use-n').checked = !s.use_ab;
+  setValue('color', toHex(s.color));
+  renderLights(s.lights);
+}
+
+function renderLights(lights) {
+  const box = $('lights');
+  if (box.contains(document.activeElement)) return;
+  box.innerHTML = '';
+  lights.forEach((l, i) => {
+    const div = document.createElement('div');
+    div.className = 'light';
+    div.innerHTML = `#${i} <select><option>directional</option><option>point</option></select>
+      <input type="number" step="0.1"><input type="number" step="0.1"><input type="number" step="0.1">
+      <input type="color"> <button>set</button> <button>remove</button>`;
+    const [kind] = div.getElementsByTagName('select');
+    const inputs = div.getElementsByTagName('input');
+    const [setB, remB] = div.getElementsByTagName('button');
+    kind.value = l.kind;
+    for (let k = 0; k < 3; ++k) inputs[k].value = l.vector[k];
+    inputs[3].value = toHex(l.color);
+    setB.onclick = () => send({ type: 'set_light', index: i, kind: kind.value,
+      vector: [0, 1, 2].map((k) => Number(inputs[k].value)), color: fromHex(inputs[3].value) });
+    remB.onclick = () => send({ type: 'remove_light', index: i });
+    box.appendChild(div);
+  });
+}
+
+function applyStats(s) {
+  tp.stats = s;
+  $('fps').textContent = s.fps.toFixed(1);
+  $('render-ms').textContent = s.render_ms.toFixed(2);
+  $('clients').textContent = s.clients;
+  const body = $('counters').tBodies[0];
+  body.innerHTML = '';
+  for (const [k, v] of Object.entries(s.counters)) {
+    const tr = body.insertRow();
+    tr.insertCell().textContent = k;
+    tr.insertCell().textContent = v;
+  }
+  const e = s.error;
+  $('error').innerHTML = e
+    ? `<b>vs reference</b> (frame ${e.frame_id}, ${e.pixels} px)<br>colour correctness ${e.correctness.toFixed(5)}<br>` +
+      `mean ${e.mean_levels.toFixed(3)} levels, max ${e.max_levels}<br>PSNR ${e.psnr.toFixed(2)} dB`
+    : '';
+}
+
+function wire() {
+  $('scene').onchange = (e) => send({ type: 'set_scene', name: e.target.value });
+  $('method').onchange = (e) => send({ type: 'set_method', method: e.target.value });
+  $('apply-size').onclick = () => send({ type: 'set_resolution', width: Number($('width').value), height: Number($('height').value) });
+  $('animate').onchange = (e) => send({ type: 'animate', on: e.target.checked });
+  $('paused').onchange = (e) => send({ type: 'pause', on: e.target.checked });
+  $('reference').onchange = (e) => send({ type: 'reference', on: e.target.checked });
+  $('step').onclick = () => send({ type: 'step' });
+  $('apply-exp').onclick = () => send($('use-ab').checked
+    ? { type: 'set_exponent', a: Number($('a').value), b: Number($('b').value) }
+    : { type: 'set_exponent', n: Number($('n').value) });
+  $('apply-mat').onclick = () => send({ type: 'set_material', ka: Number($('ka').value), kd: Number($('kd').value),
+    ks: Number($('ks').value), color: fromHex($('color').value) });
+  $('add-light').onclick = () => send({ type: 'add_light', kind: 'directional', vector: [-1, 1, 1], color: [1, 1, 1] });
+  $('zoom').onchange = (e) => {
+    zoom = Number(e.target.value);
+    for (const id of ['device', 'ref', 'heat']) sizeCanvas($(id), $(id).width, $(id).height);
+    drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+  };
+  $('row').onchange = () => drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+  for (const id of ['device', 'ref', 'heat']) {
+    $(id).onclick = (e) => {
+      const r = e.target.getBoundingClientRect();
+      $('row').value = Math.floor((e.clientY - r.top) / zoom);
+      drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+    };
+  }
+}
+
+wire();
+connect();

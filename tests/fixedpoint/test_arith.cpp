@@ -1,0 +1,97 @@
+// div / sqrt / rsqrt: exact cases, rounding ties, saturation and the documented singular results.
+// The accuracy bounds over the full input sets are in test_accuracy.cpp.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+#include "fixedpoint/arith.hpp"
+#include "fixedpoint/sqrt.hpp"
+#include "tests/fixedpoint/input_sets.hpp"
+
+namespace fx = tp::fx;
+using q7_8 = fx::Q<7, 8, std::int16_t>;
+
+TEST(Div, ByZeroGivesDocumentedLimits) {
+  const auto z = fx::q15_16::zero();
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::one(), z), fx::q15_16::max());
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::epsilon(), z), fx::q15_16::max());
+  EXPECT_EQ(fx::div<fx::q15_16>(-fx::q15_16::epsilon(), z), fx::q15_16::min());
+  EXPECT_EQ(fx::div<fx::q1_30>(fx::q15_16::min(), z), fx::q1_30::min());
+  EXPECT_EQ(fx::div<fx::q15_16>(z, z), fx::q15_16::zero());
+}
+
+TEST(Div, ExactRoundingAndTies) {
+  // 1 LSB / 2 is exactly half an LSB: ties away from zero, symmetric.
+  const auto two = q7_8::from_int(2);
+  EXPECT_EQ(fx::div<q7_8>(q7_8::from_raw(1), two).raw(), 1);
+  EXPECT_EQ(fx::div<q7_8>(q7_8::from_raw(-1), two).raw(), -1);
+  EXPECT_EQ(fx::div<q7_8>(q7_8::from_raw(1), -two).raw(), -1);
+  EXPECT_EQ(fx::div<q7_8>(q7_8::from_raw(3), two).raw(), 2);
+  EXPECT_EQ(fx::div<q7_8>(q7_8::from_raw(5), -two).raw(), -3);
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::from_int(1), fx::q15_16::from_int(3)).raw(), 21845);
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::from_int(2), fx::q15_16::from_int(3)).raw(), 43691);
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::from_int(-2), fx::q15_16::from_int(3)).raw(), -43691);
+}
+
+TEST(Div, SaturatesAndHandlesExtremes) {
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::max(), fx::q15_16::epsilon()), fx::q15_16::max());
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::min(), fx::q15_16::epsilon()), fx::q15_16::min());
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::min(), -fx::q15_16::epsilon()), fx::q15_16::max());
+  // -2^15 / 1 = -2^15 is exactly representable: no saturation artefact on the negative side.
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::min(), fx::q15_16::one()), fx::q15_16::min());
+  EXPECT_EQ(fx::div<fx::q15_16>(fx::q15_16::max(), fx::q15_16::max()), fx::q15_16::one());
+  // Tiny / huge rounds to zero (the shifted divisor leaves 64 bits).
+  EXPECT_EQ(fx::div<q7_8>(fx::q1_30::epsilon(), fx::q15_16::max()), q7_8::zero());
+  // Output with far more fractional bits than both inputs: 1/3 into Q1.60.
+  using q1_60 = fx::Q<1, 60, std::int64_t>;
+  EXPECT_EQ(fx::div<q1_60>(q7_8::from_int(1), q7_8::from_int(3)).raw(),
+            (std::int64_t{1} << 60) / 3);  // 0.333.. rounds down
+}
+
+TEST(Div, OddSymmetricOnEdgePairs) {
+  const auto e = fx::testing::edge32();
+  for (std::int64_t a : e)
+    for (std::int64_t b : e) {
+      if (a == INT32_MIN || b == INT32_MIN || b == 0) continue;
+      const auto A = fx::q15_16::from_raw(static_cast<std::int32_t>(a));
+      const auto B = fx::q15_16::from_raw(static_cast<std::int32_t>(b));
+      const auto q = fx::div<fx::q15_16>(A, B), qn = fx::div<fx::q15_16>(-A, B);
+      if (q != fx::q15_16::max() && q != fx::q15_16::min()) {  // saturated ends are asymmetric
+        ASSERT_EQ(qn.raw(), -q.raw()) << a << "/" << b;
+      }
+    }
+}
+
+TEST(Sqrt, NegativeAndZeroGiveZero) {
+  EXPECT_EQ(fx::sqrt<fx::q15_16>(fx::q15_16::from_int(-4)), fx::q15_16::zero());
+  EXPECT_EQ(fx::sqrt<fx::q15_16>(fx::q15_16::min()), fx::q15_16::zero());
+  EXPECT_EQ(fx::sqrt<fx::q15_16>(-fx::q15_16::epsilon()), fx::q15_16::zero());
+  EXPECT_EQ(fx::sqrt<fx::q15_16>(fx::q15_16::zero()), fx::q15_16::zero());
+}
+
+TEST(Sqrt, ExactSquaresAndSaturation) {
+  for (int i = 0; i <= 181; ++i)
+    ASSERT_EQ(fx::sqrt<fx::q15_16>(fx::q15_16::from_int(i * i)), fx::q15_16::from_int(i));
+  EXPECT_EQ(fx::sqrt<fx::q1_30>(fx::q15_16::from_int(16)), fx::q1_30::max());  // 4 > 2
+  EXPECT_EQ(fx::sqrt<fx::q1_30>(fx::q15_16::from_int(4)), fx::q1_30::max());   // 2 is not in Q1.30
+  EXPECT_EQ(fx::sqrt<fx::q1_30>(fx::q1_30::epsilon()).raw(), 32768);           // sqrt(2^-30)
+  EXPECT_EQ(fx::sqrt<q7_8>(fx::q1_30::epsilon()), q7_8::zero());               // 2^-15 < half LSB
+}
+
+TEST(Rsqrt, NonPositiveGivesMax) {
+  EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q15_16::zero()), fx::q15_16::max());
+  EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q15_16::from_int(-1)), fx::q15_16::max());
+  EXPECT_EQ(fx::rsqrt<fx::q1_30>(fx::q1_30::min()), fx::q1_30::max());
+}
+
+TEST(Rsqrt, PowersOfFourAreExactAndLargeSaturates) {
+  for (int k = -7; k <= 7; ++k) {
+    // x = 4^k: rsqrt = 2^-k, exact in Q15.16 for k in [-7, 7].
+    const auto x = fx::q15_16::from_raw(static_cast<std::int32_t>(std::int64_t{1} << (16 + 2 * k)));
+    ASSERT_EQ(fx::rsqrt<fx::q15_16>(x).raw(), std::int64_t{1} << (16 - k)) << k;
+  }
+  EXPECT_EQ(fx::rsqrt<fx::q1_30>(fx::q15_16::from_ratio(1, 16)), fx::q1_30::max());  // 4 > 2
+  // rsqrt(2^-30) = 2^15 is just outside Q15.16; rsqrt(2^-28) = 2^14 is exact.
+  EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q1_30::epsilon()), fx::q15_16::max());
+  EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q1_30::from_raw(4)).raw(), std::int64_t{1} << 30);
+}

@@ -1,0 +1,73 @@
+// CORDIC: singular and exact cases, symmetry, range reduction. Accuracy bounds over the full
+// input sets are in test_trig_accuracy.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixedpoint/cordic.hpp"
+#include "tests/fixedpoint/input_sets.hpp"
+
+namespace fx = tp::fx;
+using fx::testing::err_lsb;
+using fx::testing::to_ld;
+
+TEST(Cordic, Atan2OfZeroIsZero) {
+  EXPECT_EQ(fx::atan2(fx::q15_16::zero(), fx::q15_16::zero()), fx::angle_t::zero());
+  EXPECT_EQ(fx::to_polar(fx::q15_16::zero(), fx::q15_16::zero()).magnitude, fx::q15_16::zero());
+  EXPECT_EQ(fx::to_polar(fx::q15_16::zero(), fx::q15_16::zero()).angle, fx::angle_t::zero());
+}
+
+TEST(Cordic, Atan2AxesAndQuadrants) {
+  const auto one = fx::q15_16::one(), z = fx::q15_16::zero();
+  const fx::angle_t pi = fx::angle_t::from_raw(tp::tables::pi_q2_29);
+  EXPECT_EQ(fx::atan2(z, one), fx::angle_t::zero());
+  EXPECT_EQ(fx::atan2(z, -one), pi) << "atan2(0, x<0) = +pi";
+  EXPECT_EQ(fx::atan2(one, z).raw(), (tp::tables::pi_q2_29 + 1) / 2);
+  EXPECT_EQ(fx::atan2(-one, z).raw(), -(tp::tables::pi_q2_29 + 1) / 2);
+  // Odd in y, exactly (vectoring is symmetric under y -> -y).
+  for (std::int64_t y : fx::testing::edge32())
+    for (std::int64_t x : {std::int64_t{1}, std::int64_t{-77}, std::int64_t{65536}}) {
+      if (y == INT32_MIN) continue;
+      const auto Y = fx::q15_16::from_raw(static_cast<std::int32_t>(y));
+      const auto X = fx::q15_16::from_raw(static_cast<std::int32_t>(x));
+      if (y == 0 && x < 0) continue;  // +pi by convention
+      ASSERT_EQ(fx::atan2(-Y, X).raw(), -fx::atan2(Y, X).raw()) << y << "," << x;
+    }
+}
+
+TEST(Cordic, SinCosSpecialAngles) {
+  const auto sc0 = fx::sin_cos(fx::angle_t::zero());
+  EXPECT_LE(std::abs(sc0.sin.raw()), 1);
+  EXPECT_GE(sc0.cos.raw(), (1 << 30) - 1);
+  // Range ends: angle_t min() = -4 and max() ~ 4 (beyond ±π) reduce correctly.
+  for (auto a : {fx::angle_t::min(), fx::angle_t::max(), fx::angle_t::from_raw(tp::tables::pi_q2_29),
+                 fx::angle_t::from_raw(-tp::tables::pi_q2_29)}) {
+    const auto sc = fx::sin_cos(a);
+    EXPECT_LE(std::fabs(err_lsb(sc.sin, std::sin(to_ld(a)))), 0.503L) << a.raw();
+    EXPECT_LE(std::fabs(err_lsb(sc.cos, std::cos(to_ld(a)))), 0.503L) << a.raw();
+  }
+  // sin^2 + cos^2 stays 1 within a few LSB over a sweep (no gain error).
+  for (std::int64_t r = -(std::int64_t{1} << 31); r < (std::int64_t{1} << 31); r += 12345677) {
+    const auto sc = fx::sin_cos(fx::angle_t::from_raw(static_cast<std::int32_t>(r)));
+    const long double s = to_ld(sc.sin), c = to_ld(sc.cos);
+    ASSERT_NEAR(static_cast<double>(s * s + c * c), 1.0, 4e-9) << r;
+  }
+}
+
+TEST(Cordic, AcosUnitEndsAndClamp) {
+  const fx::angle_t pi = fx::angle_t::from_raw(tp::tables::pi_q2_29);
+  EXPECT_EQ(fx::acos_unit(fx::q1_30::one()), fx::angle_t::zero());
+  EXPECT_EQ(fx::acos_unit(-fx::q1_30::one()), pi);
+  EXPECT_EQ(fx::acos_unit(fx::q1_30::max()), fx::angle_t::zero()) << "c > 1 clamps to 1";
+  EXPECT_EQ(fx::acos_unit(fx::q1_30::min()), pi) << "c < -1 clamps to -1";
+  EXPECT_EQ(fx::acos_unit(fx::q1_30::zero()).raw(), (tp::tables::pi_q2_29 + 1) / 2);
+}
+
+TEST(Cordic, ToPolarMagnitudeExactCasesAndSaturation) {
+  const auto m = fx::to_polar(fx::q15_16::from_int(3), fx::q15_16::from_int(-4));
+  EXPECT_EQ(m.magnitude, fx::q15_16::from_int(5));
+  EXPECT_LE(std::fabs(err_lsb(m.angle, std::atan2(-4.0L, 3.0L))), 0.503L);
+  // |(max, max)| = sqrt(2) * 2^15 does not fit Q15.16: saturates.
+  EXPECT_EQ(fx::to_polar(fx::q15_16::max(), fx::q15_16::max()).magnitude, fx::q15_16::max());
+  EXPECT_EQ(fx::to_polar(fx::q15_16::min(), fx::q15_16::zero()).magnitude, fx::q15_16::max());
+}

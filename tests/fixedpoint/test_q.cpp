@@ -1,0 +1,95 @@
+// q.hpp conventions: rounding to nearest with ties away from zero (symmetric for negatives),
+// saturation of convert / add_sat / mul_sat, exactness of mul_wide.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+#include "fixedpoint/q.hpp"
+#include "tests/fixedpoint/input_sets.hpp"
+
+namespace fx = tp::fx;
+using q7_8 = fx::Q<7, 8, std::int16_t>;
+using q3_4 = fx::Q<3, 4, std::int16_t>;
+
+TEST(Q, ConvertRoundsTiesAwayFromZero) {
+  // Q7.8 -> Q3.4 drops 4 bits: raw 8 is exactly half an output LSB.
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(8)).raw(), 1);
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-8)).raw(), -1);
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(7)).raw(), 0);
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-7)).raw(), 0);
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(24)).raw(), 2);   // 1.5 LSB -> 2
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-24)).raw(), -2);
+}
+
+TEST(Q, ConvertIsOddSymmetricAndNearestExhaustive16) {
+  // Every Q7.8 raw into Q3.4: |err| <= 1/2 LSB, and round(-x) == -round(x) except where the
+  // negative side saturates at min() (the range is asymmetric).
+  for (std::int64_t r : fx::testing::exhaustive16()) {
+    const auto x = q7_8::from_raw(static_cast<std::int16_t>(r));
+    const auto y = fx::convert<q3_4>(x);
+    const long double err = fx::testing::err_lsb(y, fx::testing::to_ld(x));
+    ASSERT_LE(std::fabs(err), 0.5L) << r;
+    if (r != -32768) {
+      const auto yn = fx::convert<q3_4>(q7_8::from_raw(static_cast<std::int16_t>(-r)));
+      if (y != q3_4::min() && yn != q3_4::min()) {
+        ASSERT_EQ(yn.raw(), -y.raw()) << r;
+      }
+    }
+  }
+}
+
+TEST(Q, ConvertSaturates) {
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_int(100)), q3_4::max());
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_int(-100)), q3_4::min());
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_int(-8)), q3_4::min());  // exactly min: no saturation
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_int(-8)).raw(), -128);
+  bool sat = false;
+  (void)fx::convert_checked<q3_4>(q7_8::from_int(8), sat);
+  EXPECT_TRUE(sat);
+  (void)fx::convert_checked<q3_4>(q7_8::from_int(7), sat);
+  EXPECT_FALSE(sat);
+  // Widening into more fractional bits saturates instead of shifting bits away.
+  EXPECT_EQ(fx::convert<fx::q1_30>(fx::q15_16::from_int(30000)), fx::q1_30::max());
+  EXPECT_EQ(fx::convert<fx::q1_30>(fx::q15_16::from_int(-30000)), fx::q1_30::min());
+}
+
+TEST(Q, SaturatingAddSubNegMul) {
+  const auto mx = fx::q15_16::max(), mn = fx::q15_16::min(), one = fx::q15_16::one();
+  EXPECT_EQ(fx::add_sat(mx, one), mx);
+  EXPECT_EQ(fx::sub_sat(mn, one), mn);
+  EXPECT_EQ(fx::neg_sat(mn), mx);
+  EXPECT_EQ(fx::abs_sat(mn), mx);
+  EXPECT_EQ(fx::mul_sat<fx::q15_16>(mx, mx), mx);
+  EXPECT_EQ(fx::mul_sat<fx::q15_16>(mx, mn), mn);
+  EXPECT_EQ(fx::mul_sat<fx::q15_16>(mn, mn), mx);
+  EXPECT_EQ(fx::add_sat(one, one).raw(), 2 << 16);
+}
+
+TEST(Q, MulWideIsExactOnEdgePairs) {
+  const auto e = fx::testing::edge32();
+  for (std::int64_t a : e)
+    for (std::int64_t b : e) {
+      const auto p = fx::mul_wide(fx::q1_30::from_raw(static_cast<std::int32_t>(a)),
+                                  fx::q15_16::from_raw(static_cast<std::int32_t>(b)));
+      static_assert(decltype(p)::frac_bits == 46 && decltype(p)::int_bits == 16);
+      ASSERT_EQ(p.raw(), a * b);
+    }
+}
+
+TEST(Q, MulSatRoundsTiesAwayFromZero) {
+  // 2^-8 * 2^-1 = 2^-9: exactly half a Q7.8 LSB.
+  const auto lsb = q7_8::from_raw(1), half = q7_8::from_raw(128);
+  EXPECT_EQ(fx::mul_sat<q7_8>(lsb, half).raw(), 1);
+  EXPECT_EQ(fx::mul_sat<q7_8>(-lsb, half).raw(), -1);
+  EXPECT_EQ(fx::mul_sat<q7_8>(q7_8::from_raw(3), half).raw(), 2);    // 1.5 -> 2
+  EXPECT_EQ(fx::mul_sat<q7_8>(q7_8::from_raw(-3), half).raw(), -2);
+}
+
+TEST(Q, FromRatioAndConstants) {
+  EXPECT_EQ(fx::q1_30::from_ratio(1, 3).raw(), 357913941);
+  EXPECT_EQ(fx::q1_30::from_ratio(-1, 3).raw(), -357913941);
+  EXPECT_EQ(q7_8::from_ratio(1, 512).raw(), 1);   // tie -> away
+  EXPECT_EQ(q7_8::from_ratio(-1, 512).raw(), -1);
+  EXPECT_EQ(fx::q1_30::from_int(2), fx::q1_30::max());  // 2 is outside [-2, 2)
+  EXPECT_EQ(fx::q1_30::from_int(-2).raw(), INT32_MIN);
+}

@@ -1,0 +1,163 @@
+// Scene files: every shipped scene loads with the DESIGN §9 parameters; every malformed
+// fixture in data/ fails with a SceneError naming file, line, JSON path and problem.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "host/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace tp::host;
+
+namespace {
+
+const fs::path kData = TP_HOST_TEST_DATA;
+const fs::path kScenes = TP_SCENES_DIR;
+
+struct Expected {
+  const char* file;
+  int line;
+  const char* path;
+  const char* problem;  // substring of SceneError::problem()
+};
+
+SceneError load_error(const fs::path& file) {
+  try {
+    load_scene(file);
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << file << " loaded without error";
+  return SceneError("", -1, "", "");
+}
+
+}  // namespace
+
+class MalformedScene : public ::testing::TestWithParam<Expected> {};
+
+TEST_P(MalformedScene, NamesFileLinePathAndProblem) {
+  const Expected& x = GetParam();
+  const SceneError e = load_error(kData / x.file);
+  EXPECT_EQ(e.file(), (kData / x.file).string());
+  EXPECT_EQ(e.line(), x.line) << e.what();
+  EXPECT_EQ(e.path(), x.path) << e.what();
+  EXPECT_NE(e.problem().find(x.problem), std::string::npos) << e.what();
+  // The message carries all of it, for the command-line tool to print as is.
+  EXPECT_NE(std::string(e.what()).find(x.file), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Fixtures, MalformedScene,
+    ::testing::Values(
+        Expected{"malformed.json", 4, "", "malformed JSON"},
+        Expected{"unknown_key.json", 6, "/lights/1/color", "unknown key \"color\""},
+        Expected{"wrong_type.json", 5, "/material/ka", "expected a number, got string"},
+        Expected{"out_of_range.json", 7, "/lights/2/position/1", "out of range"},
+        Expected{"nan.json", 4, "", "malformed JSON"},
+        Expected{"too_many_lights.json", 3, "/lights", "at most 16 lights, got 17"},
+        Expected{"missing_mesh.json", 5, "/meshes/0/obj", "mesh file not found"},
+        Expected{"bad_obj.json", 6, "/meshes/1/obj", "missing vertex"},
+        Expected{"missing_key.json", 1, "", "missing key \"camera\""},
+        Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions",
+                 "out of range"}));
+
+TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
+  // nlohmann either refuses 1e999 while parsing or yields infinity; both must be an error on
+  // line 4 (the parse error carries no JSON path; the range check does).
+  const SceneError e = load_error(kData / "overflow_number.json");
+  EXPECT_EQ(e.line(), 4) << e.what();
+  const bool parse = e.problem().find("malformed JSON") != std::string::npos;
+  const bool range = e.path() == "/material/n" && e.problem().find("finite") != std::string::npos;
+  EXPECT_TRUE(parse || range) << e.what();
+}
+
+TEST(SceneParse, MissingFileIsAnError) {
+  const SceneError e = load_error(kData / "no_such_scene.json");
+  EXPECT_NE(e.problem().find("cannot open"), std::string::npos);
+}
+
+TEST(SceneParse, InlineTextErrorsNameTheGivenFileName) {
+  try {
+    parse_scene("{\n \"camera\": {\"type\": \"fisheye\"}, \"lights\": [], \"meshes\": []}", "inline",
+                ".");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), "inline");
+    EXPECT_EQ(e.path(), "/camera/type");
+    EXPECT_EQ(e.line(), 2);
+  }
+}
+
+TEST(SceneParse, RelativeObjResolvesAgainstTheSceneFolder) {
+  const Scene s = load_scene(kData / "good_obj.json");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].mesh.triangles.size(), 2u);
+  EXPECT_EQ(s.material.ka, 0.1);  // defaults are the papers' material
+  EXPECT_EQ(s.material.n, 20);
+}
+
+TEST(ShippedScenes, AllLoadWithThePapersParameters) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Scene s = load_scene(entry.path());
+    ++count;
+    EXPECT_EQ(s.material.ka, 0.1);
+    EXPECT_EQ(s.material.kd, 0.6);
+    EXPECT_EQ(s.material.ks, 0.4);
+    EXPECT_EQ(s.material.n, 20);
+    for (const auto& l : s.lights) EXPECT_EQ(l.colour, glm::dvec3(1, 1, 1));
+    const std::string stem = entry.path().stem().string();
+    const auto dash_l = stem.rfind("-l");
+    const std::size_t want_lights =
+        dash_l == std::string::npos ? 1 : std::stoul(stem.substr(dash_l + 2));
+    EXPECT_EQ(s.lights.size(), want_lights);
+    const bool tea = stem.rfind("teapot", 0) == 0;
+    EXPECT_EQ(s.width, tea ? 640 : 512);
+    EXPECT_EQ(s.height, tea ? 480 : 512);
+    EXPECT_EQ(s.camera.kind, tea ? CameraKind::Perspective : CameraKind::Orthographic);
+  }
+  EXPECT_EQ(count, 24);  // 6 scenes × {1, 2, 4, 8} lights
+}
+
+TEST(ShippedScenes, TriangleCounts) {
+  auto tris = [](const char* f) { return load_scene(kScenes / f).meshes.at(0).mesh.triangles.size(); };
+  EXPECT_EQ(tris("sphere-32.json"), 32u);
+  EXPECT_EQ(tris("sphere-512.json"), 512u);
+  EXPECT_EQ(tris("sphere-40.json"), 40u);
+  EXPECT_EQ(tris("dodecahedron-30.json"), 30u);
+  EXPECT_EQ(tris("triangle.json"), 1u);
+  EXPECT_EQ(tris("teapot.json"), 4032u);
+}
+
+TEST(Matrices, OrthographicIsIdentityViewAndEyeLightsAreWorldLights) {
+  const Scene s = load_scene(kScenes / "sphere-32.json");
+  EXPECT_EQ(view_matrix(s.camera), glm::dmat4(1.0));
+  const auto lights = eye_lights(s);
+  ASSERT_EQ(lights.size(), 1u);
+  EXPECT_EQ(lights[0].kind, LightKind::Point);
+  // DESIGN §9: 4·normalize(1, 1.2, 1.5), written with 6 decimals in the file.
+  const glm::dvec3 want = 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5));
+  EXPECT_NEAR(glm::length(lights[0].vector - want), 0, 1e-6);
+  EXPECT_TRUE(eye_at_infinity(s.camera));
+  // glm::ortho maps the extents onto NDC [-1, 1].
+  const glm::dvec4 c = projection_matrix(s.camera, 512, 512) * glm::dvec4(1.25, -1.25, 0, 1);
+  EXPECT_NEAR(c.x, 1, 1e-12);
+  EXPECT_NEAR(c.y, -1, 1e-12);
+}
+
+TEST(Matrices, PerspectiveTeapotLightGoesToEyeSpace) {
+  const Scene s = load_scene(kScenes / "teapot.json");
+  const auto lights = eye_lights(s);
+  const glm::dmat4 v = glm::lookAt(glm::dvec3(0, 1.5, 6), glm::dvec3(0), glm::dvec3(0, 1, 0));
+  const glm::dvec3 want = glm::normalize(glm::dvec3(v * glm::dvec4(glm::normalize(glm::dvec3(1, 1.5, 1)), 0)));
+  EXPECT_NEAR(glm::length(lights.at(0).vector - want), 0, 1e-12);
+  EXPECT_FALSE(eye_at_infinity(s.camera));
+  // The eye-space origin is the camera position.
+  const glm::dvec4 cam = v * glm::dvec4(0, 1.5, 6, 1);
+  EXPECT_NEAR(glm::length(glm::dvec3(cam)), 0, 1e-12);
+}

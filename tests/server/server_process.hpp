@@ -1,0 +1,196 @@
+// Test helpers: start tinyphong-server on a free loopback port as a subprocess, and small
+// synchronous Beast clients with timeouts (every wait is bounded).
+#pragma once
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <nlohmann/json.hpp>
+
+namespace tpt {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = net::ip::tcp;
+using namespace std::chrono_literals;
+
+class ServerProcess {
+ public:
+  explicit ServerProcess(std::vector<std::string> args) {
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("pipe");
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(fds[1], 1);
+      close(fds[0]);
+      std::vector<std::string> all = {TP_SERVER_BINARY, "--port", "0"};
+      all.insert(all.end(), args.begin(), args.end());
+      std::vector<char*> argv;
+      for (auto& a : all) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    close(fds[1]);
+    out_ = fds[0];
+    // The first line says where it listens: "tinyphong: serving http://127.0.0.1:PORT/".
+    std::string line;
+    char c;
+    while (read(out_, &c, 1) == 1 && c != '\n') line += c;
+    const auto p = line.find("127.0.0.1:");
+    if (p == std::string::npos) throw std::runtime_error("server did not start: " + line);
+    port_ = static_cast<unsigned short>(std::stoi(line.substr(p + 10)));
+  }
+  ~ServerProcess() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    close(out_);
+  }
+  unsigned short port() const { return port_; }
+  pid_t pid() const { return pid_; }
+  std::string host() const { return "127.0.0.1:" + std::to_string(port_); }
+  long rss_kib() const {  // resident set size from /proc (Linux)
+    std::ifstream f("/proc/" + std::to_string(pid_) + "/status");
+    std::string k;
+    long v = -1;
+    while (f >> k)
+      if (k == "VmRSS:") f >> v;
+    return v;
+  }
+  // Sends sig and waits up to `limit`; returns the exit status or -1 on timeout.
+  int signal_and_wait(int sig, std::chrono::milliseconds limit, std::chrono::milliseconds& took) {
+    const auto t0 = std::chrono::steady_clock::now();
+    kill(pid_, sig);
+    int status = 0;
+    while (std::chrono::steady_clock::now() - t0 < limit) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
+        pid_ = -1;
+        return status;
+      }
+      std::this_thread::sleep_for(5ms);
+    }
+    return -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  int out_ = -1;
+  unsigned short port_ = 0;
+};
+
+struct Message {
+  bool ok = false, binary = false;
+  std::string data;
+  beast::error_code ec;
+};
+
+class WsClient {
+ public:
+  // Throws on a failed handshake (e.g. 403). rcvbuf > 0 shrinks the socket's receive buffer.
+  WsClient(unsigned short port, std::string origin = "", std::string host = "", int rcvbuf = 0)
+      : ws_(ioc_) {
+    auto& sock = beast::get_lowest_layer(ws_);
+    sock.open(tcp::v4());
+    if (rcvbuf > 0) sock.set_option(net::socket_base::receive_buffer_size(rcvbuf));
+    sock.connect({net::ip::make_address("127.0.0.1"), port});
+    ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& r) {
+      if (!origin.empty()) r.set(http::field::origin, origin);
+    }));
+    ws_.read_message_max(64 << 20);
+    ws_.handshake(host.empty() ? "127.0.0.1:" + std::to_string(port) : host, "/ws");
+  }
+  // A read that times out stays pending (the stream stays usable); the next call resumes it.
+  Message read(std::chrono::milliseconds timeout = 10s) {
+    Message m;
+    if (!pending_) {
+      pending_ = true;
+      done_ = false;
+      buf_.clear();
+      ws_.async_read(buf_, [this](beast::error_code ec, std::size_t) {
+        ec_ = ec;
+        done_ = true;
+      });
+    }
+    ioc_.restart();
+    ioc_.run_for(timeout);
+    if (!done_) {
+      m.ec = net::error::timed_out;
+      return m;
+    }
+    pending_ = false;
+    m.ec = ec_;
+    m.ok = !m.ec;
+    m.binary = ws_.got_binary();
+    m.data = beast::buffers_to_string(buf_.data());
+    return m;
+  }
+  void send(const std::string& text) {
+    ws_.text(true);
+    ws_.write(net::buffer(text));
+  }
+  void send_json(const nlohmann::json& j) { send(j.dump()); }
+  // Reads until a text message of the given type (acking frames on the way, if asked).
+  nlohmann::json read_json(const std::string& type, std::chrono::milliseconds timeout = 10s, bool acks = true) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      Message m = read(std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()));
+      if (!m.ok) break;
+      if (m.binary) {
+        if (acks) ack(m.data);
+        continue;
+      }
+      auto j = nlohmann::json::parse(m.data);
+      if (j.value("type", "") == type) return j;
+    }
+    return nullptr;
+  }
+  void ack(const std::string& frame) {
+    std::uint32_t id = 0;
+    for (int i = 3; i >= 0; --i) id = (id << 8) | static_cast<std::uint8_t>(frame[8 + static_cast<std::size_t>(i)]);
+    const bool ref = frame[6] == 1;
+    send_json({{"type", "ack"}, {"id", id}, {"kind", ref ? "reference" : "device"}});
+  }
+  websocket::close_reason reason() const { return ws_.reason(); }
+  websocket::stream<tcp::socket>& ws() { return ws_; }
+
+ private:
+  net::io_context ioc_;
+  websocket::stream<tcp::socket> ws_;
+  beast::flat_buffer buf_;
+  beast::error_code ec_;
+  bool pending_ = false, done_ = false;
+};
+
+// One raw HTTP GET; returns the status code (0 on failure).
+inline int http_get(unsigned short port, const std::string& target, const std::string& host = "") {
+  net::io_context ioc;
+  tcp::socket s(ioc);
+  s.connect({net::ip::make_address("127.0.0.1"), port});
+  http::request<http::empty_body> req{http::verb::get, target, 11};
+  req.set(http::field::host, host.empty() ? "127.0.0.1:" + std::to_string(port) : host);
+  http::write(s, req);
+  beast::flat_buffer b;
+  http::response<http::string_body> res;
+  beast::error_code ec;
+  http::read(s, b, res, ec);
+  return ec ? 0 : res.result_int();
+}
+
+}  // namespace tpt

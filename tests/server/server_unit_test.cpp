@@ -1,0 +1,160 @@
+// Unit tests of the server's pure parts: frame encoding, control validation, HTTP routing.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "server/control.hpp"
+#include "server/http.hpp"
+#include "server/pattern_source.hpp"
+#include "server/protocol.hpp"
+
+using namespace tp::server;
+
+namespace {
+std::span<const std::uint8_t> bytes(const std::string& s) {
+  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
+}
+}  // namespace
+
+TEST(Protocol, Fnv1a64KnownVectors) {
+  // Published FNV-1a 64 test vectors (offset basis; "a"; "foobar").
+  EXPECT_EQ(fnv1a64(bytes("")), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(fnv1a64(bytes("a")), 0xaf63dc4c8601ec8cULL);
+  EXPECT_EQ(fnv1a64(bytes("foobar")), 0x85944171f73967e8ULL);
+  EXPECT_EQ(hex64(0xaf63dc4c8601ec8cULL), "af63dc4c8601ec8c");
+}
+
+TEST(Protocol, EncodeDecodeRoundTrip) {
+  std::vector<std::uint8_t> rgb(5 * 3 * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<std::uint8_t>(i * 7);
+  auto f = encode_frame(FrameKind::reference, 77, 5, 3, rgb, 1.25);
+  ASSERT_EQ(f->bytes.size(), kHeaderBytes + rgb.size());
+  EncodedFrame d;
+  ASSERT_TRUE(decode_header(bytes(f->bytes), d));
+  EXPECT_EQ(d.kind, FrameKind::reference);
+  EXPECT_EQ(d.id, 77u);
+  EXPECT_EQ(d.width, 5);
+  EXPECT_EQ(d.height, 3);
+  EXPECT_DOUBLE_EQ(d.render_ms, 1.25);
+  EXPECT_EQ(d.checksum, fnv1a64(rgb));
+  EXPECT_EQ(std::string(f->bytes.begin() + kHeaderBytes, f->bytes.end()),
+            std::string(rgb.begin(), rgb.end()));
+  std::string bad = f->bytes;
+  bad[0] = 'X';
+  EXPECT_FALSE(decode_header(bytes(bad), d));
+  EXPECT_FALSE(decode_header(bytes(f->bytes.substr(0, f->bytes.size() - 1)), d));
+}
+
+TEST(Control, RejectsEachMalformedMessageByName) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"{", "malformed JSON"},
+      {"[1,2]", "JSON object"},
+      {"{\"x\":1}", "type"},
+      {"{\"type\":\"launch_missiles\"}", "unknown message type 'launch_missiles'"},
+      {"{\"type\":\"set_method\",\"method\":\"phong\",\"extra\":1}", "unknown field 'extra'"},
+      {"{\"type\":\"set_method\"}", "missing 'method'"},
+      {"{\"type\":\"set_method\",\"method\":5}", "'method' must be a string"},
+      {"{\"type\":\"set_exponent\",\"n\":0}", "'n' out of range"},
+      {"{\"type\":\"set_exponent\",\"n\":1e400}", "malformed JSON"},
+      {"{\"type\":\"set_exponent\",\"n\":20,\"a\":0.1,\"b\":0.3}", "either 'n' or both"},
+      {"{\"type\":\"set_exponent\",\"a\":0.1}", "both 'a' and 'b'"},
+      {"{\"type\":\"set_exponent\",\"a\":0.5,\"b\":0.3}", "'a' must be less than 'b'"},
+      {"{\"type\":\"set_material\",\"kd\":1.5}", "'kd' out of range"},
+      {"{\"type\":\"set_material\",\"color\":[1,1]}", "array of 3 numbers"},
+      {"{\"type\":\"set_material\"}", "needs"},
+      {"{\"type\":\"add_light\",\"kind\":\"spot\",\"vector\":[0,0,1]}", "'kind' must be"},
+      {"{\"type\":\"add_light\",\"kind\":\"directional\",\"vector\":[0,0,0]}", "must not be zero"},
+      {"{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[0,0,1e9]}", "out of range"},
+      {"{\"type\":\"remove_light\",\"index\":-1}", "'index' out of range"},
+      {"{\"type\":\"set_resolution\",\"width\":4096,\"height\":100}", "'width' out of range"},
+      {"{\"type\":\"set_resolution\",\"width\":100.5,\"height\":100}", "must be an integer"},
+      {"{\"type\":\"animate\",\"on\":\"yes\"}", "true or false"},
+      {"{\"type\":\"ack\",\"id\":-3,\"kind\":\"device\"}", "'id' must be an unsigned integer"},
+  };
+  for (const auto& [msg, why] : cases) {
+    ParseResult r = parse_control(msg);
+    EXPECT_FALSE(r.command.has_value()) << msg;
+    EXPECT_NE(r.error.find(why), std::string::npos) << msg << " -> " << r.error;
+  }
+  ParseResult big = parse_control(std::string(kControlMessageLimit + 1, ' '));
+  EXPECT_NE(big.error.find("too large"), std::string::npos);
+}
+
+TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
+  PatternSource src;
+  LoopFlags flags;
+  bool step = false;
+  auto run = [&](const char* msg) {
+    ParseResult r = parse_control(msg);
+    EXPECT_TRUE(r.command.has_value()) << msg << ": " << r.error;
+    return r.command ? apply_control(*r.command, src, flags, step) : r.error;
+  };
+  EXPECT_EQ(run("{\"type\":\"set_method\",\"method\":\"rings\"}"), "");
+  EXPECT_EQ(src.settings().method, "rings");
+  EXPECT_NE(run("{\"type\":\"set_method\",\"method\":\"nope\"}").find("unknown method"), std::string::npos);
+  EXPECT_EQ(src.settings().method, "rings");
+  EXPECT_EQ(run("{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[1,2,3],\"color\":[0.5,0.5,0.5]}"), "");
+  ASSERT_EQ(src.settings().lights.size(), 2u);
+  EXPECT_TRUE(src.settings().lights[1].point);
+  EXPECT_EQ(run("{\"type\":\"set_light\",\"index\":1,\"vector\":[0,0,5]}"), "");
+  EXPECT_EQ(src.settings().lights[1].vector[2], 5.0);
+  EXPECT_NE(run("{\"type\":\"set_light\",\"index\":5,\"vector\":[0,0,5]}").find("no light with index 5"), std::string::npos);
+  EXPECT_EQ(run("{\"type\":\"remove_light\",\"index\":0}"), "");
+  EXPECT_NE(run("{\"type\":\"remove_light\",\"index\":0}").find("last light"), std::string::npos);
+  EXPECT_EQ(src.settings().lights.size(), 1u);
+  EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":0.3}"), "");
+  EXPECT_TRUE(src.settings().use_ab);
+  EXPECT_EQ(run("{\"type\":\"pause\",\"on\":true}"), "");
+  EXPECT_TRUE(flags.paused);
+  EXPECT_EQ(run("{\"type\":\"step\"}"), "");
+  EXPECT_TRUE(step);
+  EXPECT_NE(run("{\"type\":\"set_scene\",\"name\":\"nope\"}").find("unknown scene"), std::string::npos);
+}
+
+namespace {
+Request get(const std::string& target, const std::string& host = "127.0.0.1:8080") {
+  Request r{http::verb::get, target, 11};
+  r.set(http::field::host, host);
+  return r;
+}
+HostPolicy policy() { return HostPolicy{{"127.0.0.1", "localhost", "[::1]"}, 8080}; }
+}  // namespace
+
+TEST(Http, ServesOnlyTheEmbeddedAllowList) {
+  auto res = route(get("/"), policy());
+  EXPECT_EQ(res.result(), http::status::ok);
+  EXPECT_NE(res.body().find("<canvas"), std::string::npos);
+  EXPECT_EQ(route(get("/app.js"), policy()).result(), http::status::ok);
+  EXPECT_EQ(route(get("/style.css?v=1"), policy()).result(), http::status::ok);
+  for (const char* t : {"/../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc%2fpasswd",
+                        "/..\\..\\etc\\passwd", "/web/../index.html", "//etc/passwd", "/index.html/..",
+                        "/%2E%2E/index.html", "/CMakeLists.txt", "/server/web/index.html", "index.html"})
+    EXPECT_EQ(route(get(t), policy()).result(), http::status::not_found) << t;
+}
+
+TEST(Http, RefusesForeignHostsAndOrigins) {
+  EXPECT_EQ(route(get("/", "evil.example:8080"), policy()).result(), http::status::forbidden);
+  EXPECT_EQ(route(get("/", "127.0.0.1:9999"), policy()).result(), http::status::forbidden);
+  EXPECT_EQ(route(get("/", "localhost:8080"), policy()).result(), http::status::ok);
+  Request post = get("/");
+  post.method(http::verb::post);
+  EXPECT_EQ(route(post, policy()).result(), http::status::method_not_allowed);
+
+  http::status st{};
+  Request up = get("/ws");
+  EXPECT_EQ(check_upgrade(up, policy(), st), "");  // no Origin: a non-browser client
+  up.set(http::field::origin, "http://localhost:8080");
+  EXPECT_EQ(check_upgrade(up, policy(), st), "");
+  for (const char* o : {"http://evil.example", "http://127.0.0.1:8081", "https://127.0.0.1:8080",
+                        "http://127.0.0.1:8080.evil.example", "null"}) {
+    up.set(http::field::origin, o);
+    EXPECT_EQ(check_upgrade(up, policy(), st), "forbidden origin") << o;
+    EXPECT_EQ(st, http::status::forbidden);
+  }
+  Request rebind = get("/ws", "attacker.example:8080");  // DNS rebinding: foreign Host
+  rebind.set(http::field::origin, "http://attacker.example:8080");
+  EXPECT_EQ(check_upgrade(rebind, policy(), st), "forbidden host");
+  Request elsewhere = get("/other");
+  EXPECT_NE(check_upgrade(elsewhere, policy(), st), "");
+  EXPECT_EQ(st, http::status::not_found);
+}
