@@ -14,13 +14,15 @@
 
 #include <cstdint>
 
+#include "fixedpoint/cordic.hpp"
 #include "fixedpoint/q.hpp"
 #include "tables/cosn_fits.hpp"
 
 namespace tp::fw::cosn {
 
-// Radians in Q2.29 (fixedpoint's angle format, |θ| < 4 > π).
-using angle_t = fx::q2_29;
+// Radians in Q2.29, the CORDIC's angle format (|θ| < 4 covers ±π).
+using angle_t = fx::angle_t;
+static_assert(angle_t::frac_bits == tables::cosn_fits::kAngleFracBits, "fits are in Q2.29");
 
 inline constexpr int kMinN = 1;
 inline constexpr int kMaxN = 10000;

@@ -2,29 +2,31 @@
 // θ(x) = θ0 + x·dθ (x = 0 .. length−1): the quadratic-segment state the span evaluator sums
 // over lights and terms (DESIGN §7, "Summed sections").
 //
-// State format: one fixed format for every term, Q.40 in int64 (kStateFrac), so states of
+// State format: one fixed format for every term, Q.44 in int64 (kStateFrac), so states of
 // different terms add. Within a segment, the value is an exact integer polynomial
 //   V(t) = A t² + B t + C,  t = x − x_start,
 // held as (v, d1, d2) = (V(0), V(1) − V(0), 2A); a step is v += d1, d1 += d2 (two additions),
 // which is exact in integers: stepping reproduces direct evaluation bit for bit.
+// Why 44 fractional bits: the rounding of A (<= 2^-45) grows like t², up to 2^24 over a
+// 4,096-pixel span: 2^-21 = 1/32 of the output LSB (2^-16). With 40 bits it was measured at
+// 0.44 LSB on top of the output rounding (tests/cosn, n = 1, a 3,791-pixel span).
 //
 // Segments: each term is cut where θ(x) crosses ±a and ±b, at most five segments; each
 // segment is re-seeded from its own polynomial (value, first difference) at its start, so the
-// rounding of the coefficients never accumulates across break points (the value may step by a
-// few units of 2^-40 there; measured in tests/cosn). To sum terms, the span evaluator adds
-// jump(prev, next) = next.state − prev.state advanced to next.x at each break point: then the
-// running sum equals the sum of the terms' direct evaluations exactly.
+// rounding of the coefficients never accumulates across break points. To sum terms, the span
+// evaluator adds jump(prev, next) = next.state − prev.state advanced to next.x at each break
+// point: then the running sum equals the sum of the terms' direct evaluations exactly.
 //
-// Preconditions and overflow bounds (checked in tests/cosn under UBSan):
-//   1 <= length <= 4096; |θ0| <= π and |θ0 + (length−1)·dθ| <= π, so |dθ| <= 2π;
-//   0 <= scale <= 1 (Q1.30); CosnCoeffs valid (0 < a < b <= π, 1/(ab), 1/(b(b−a)) <= 2^14,
-//   which holds for every n <= 10,000 of all three (a, b) sources).
-//   With k <= 2^14, |e| <= π + b < 2^2.4 and |dθ| <= 2π: |s·k| < 2^54 (Q40), |s·k·e| < 2^56.4,
-//   |A| = s·k·dθ² < 2^14·2^5.3 = 2^19.3 units -> 2^59.3 in Q40, |2A| < 2^60.3; |B| < 2^14·2·
-//   2^2.4·2^2.7 -> 2^61.1 (these extremes need |dθ| ~ 2π, i.e. a 2-pixel span across the whole
-//   sphere; for |dθ| <= 1/8 all three are < 2^52, leaving room to sum >= 1,000 terms).
-//   Within a segment |V| <= scale, and every partial product of advance() stays below the
-//   same bounds because t·|dθ| is at most the piece width.
+// Preconditions and overflow bounds (exercised in tests/cosn under UBSan):
+//   1 <= length <= 4096; |θ0| <= π and |θ0 + (length−1)·dθ| <= π; |dθ| <= 1 radian per
+//   pixel (make_segments saturates dθ to ±1: a span turning faster than that has no smooth
+//   shading to preserve); 0 <= scale <= 1 (Q1.30); CosnCoeffs valid (0 < a < b <= π,
+//   k = 1/(ab), 1/(b(b−a)) <= 2^14, true for every n <= 10,000 of all three (a, b) sources).
+//   Bounds: k·|e| <= 1/b <= 2^5.1 at a segment start (|e| <= a for the inner piece, b − a
+//   for the outer ones), so |B| = 2·s·k·|e|·|dθ| < 2^6.1; |A| = s·k·dθ² <= 2^14; in Q.44:
+//   |v| <= 2^44, |d1| <= 2^58.1, |d2| <= 2^59. Inside advance(), t·|dθ| is at most the piece
+//   width plus one step, so t·|A| < 2^15.6 and A·t² <= 4 units: every partial product < 2^60.
+//   Sums: 8 worst-case terms fit int64; at a typical |dθ| <= 2^-6, |d2| <= 2^47, so thousands.
 #pragma once
 
 #include <cstdint>
@@ -35,15 +37,16 @@
 
 namespace tp::fw::cosn {
 
-inline constexpr int kStateFrac = 40;   // Q.40 state
+inline constexpr int kStateFrac = 44;   // Q.44 state
 inline constexpr int kOutFrac = 16;     // output intensity: 1.0 = 2^16
 inline constexpr int kMaxSpan = 4096;
 inline constexpr int kMaxSegments = 5;  // zero | outer | inner | outer | zero
 inline constexpr std::int64_t kMaxK = std::int64_t{1} << 14;
+inline constexpr std::int64_t kMaxDThetaRaw = std::int64_t{1} << 29;  // 1 radian per pixel
 
 using scale_t = fx::q1_30;
 
-// 1/(ab) and 1/(b(b−a)) in Q.40, computed once per material.
+// 1/(ab) and 1/(b(b−a)) in Q.40 (relative precision 2^-41 at k >= 1/4), once per material.
 struct CosnCoeffs {
   std::int64_t a = 0, b = 0;    // Q2.29 raw
   std::int64_t k_in = 0;        // 1/(ab), Q.40
@@ -52,7 +55,7 @@ struct CosnCoeffs {
 };
 
 struct QuadState {
-  std::int64_t v = 0, d1 = 0, d2 = 0;  // Q.40
+  std::int64_t v = 0, d1 = 0, d2 = 0;  // Q.44
   friend constexpr bool operator==(const QuadState&, const QuadState&) = default;
 };
 
@@ -103,17 +106,17 @@ constexpr int piece_of(i64 theta, i64 a, i64 b) {
 
 // In a domain where θ increases (dθ > 0), the first x with θ0 + x·dθ beyond `bound`:
 // strictly (> bound) or not (>= bound). bound − θ0 >= 0 here.
-constexpr i64 first_x_past(i64 theta0, i64 dtheta, i64 bound, bool strict) {
-  const i64 gap = bound - theta0;
+constexpr i64 first_x_past(i64 theta_begin, i64 dtheta, i64 bound, bool strict) {
+  const i64 gap = bound - theta_begin;
   if (gap < 0) return 0;
   return strict ? gap / dtheta + 1 : (gap + dtheta - 1) / dtheta;
 }
 
 // The pixel where the piece next changes, for a span in piece `p` at x (dθ != 0).
-constexpr i64 next_change(const CosnCoeffs& c, i64 theta0, i64 dtheta, int p) {
+constexpr i64 next_change(const CosnCoeffs& c, i64 theta_begin, i64 dtheta, int p) {
   // Mirror a decreasing span: −θ maps piece j to 4 − j with the same open/closed ends.
   const bool down = dtheta < 0;
-  const i64 t0 = down ? -theta0 : theta0, dt = down ? -dtheta : dtheta;
+  const i64 t0 = down ? -theta_begin : theta_begin, dt = down ? -dtheta : dtheta;
   const int q = down ? 4 - p : p;  // piece in the mirrored, increasing domain
   switch (q) {
     case 0: return first_x_past(t0, dt, -c.b, true);
@@ -130,8 +133,8 @@ constexpr QuadState seed(const CosnCoeffs& c, i64 theta, i64 dtheta, i64 s, int 
   const bool inner = piece == 2;
   const i64 centre = inner ? 0 : (piece == 1 ? -c.b : c.b);
   const i64 e = theta - centre;
-  const i64 sk = mul_shr(s, inner ? c.k_in : c.k_out, 30);  // Q.40
-  const i64 ske = mul_shr(sk, e, 29);                         // s·k·e, Q.40
+  const i64 sk = mul_shr(s, inner ? c.k_in : c.k_out, 26);  // Q30·Q40 -> Q.44 (< 2^58)
+  const i64 ske = mul_shr(sk, e, 29);                         // s·k·e, Q.44
   i64 A = mul_shr(mul_shr(sk, dtheta, 29), dtheta, 29);       // s·k·dθ²
   i64 B = 2 * mul_shr(ske, dtheta, 29);                       // 2·s·k·e·dθ
   i64 C = mul_shr(ske, e, 29);                                // s·k·e²
@@ -161,9 +164,12 @@ constexpr CosnCoeffs make_coeffs(CosnParams p) {
 // The segments of one term (a light's diffuse or specular f, times `scale`) on a span:
 // returns their count (1..5); out[0].x == 0, x strictly increasing, all < length.
 // dθ is ignored when length == 1.
-constexpr int make_segments(const CosnCoeffs& c, angle_t theta0, angle_t dtheta, scale_t scale,
+constexpr int make_segments(const CosnCoeffs& c, angle_t theta_begin, angle_t dtheta, scale_t scale,
                             int length, CosnSegment* out) {
-  const std::int64_t t0 = theta0.raw(), dt = length > 1 ? dtheta.raw() : 0, s = scale.raw();
+  const std::int64_t t0 = theta_begin.raw(), s = scale.raw();
+  const std::int64_t dt_in = length > 1 ? dtheta.raw() : 0;
+  const std::int64_t dt = dt_in > kMaxDThetaRaw ? kMaxDThetaRaw
+                                                 : (dt_in < -kMaxDThetaRaw ? -kMaxDThetaRaw : dt_in);
   int count = 0;
   std::int64_t x = 0;
   int piece = fd_detail::piece_of(t0, c.a, c.b);
@@ -189,7 +195,7 @@ constexpr void step(QuadState& st) {
   st.d1 += st.d2;
 }
 
-// Direct evaluation of the same integer polynomial at pixel x (Q.40).
+// Direct evaluation of the same integer polynomial at pixel x (Q.44).
 constexpr std::int64_t eval_at(const CosnSegment* segs, int count, std::int64_t x) {
   int i = 0;
   while (i + 1 < count && segs[i + 1].x <= x) ++i;
@@ -203,7 +209,7 @@ constexpr QuadState jump(const CosnSegment& prev, const CosnSegment& next) {
   return {next.st.v - p.v, next.st.d1 - p.d1, next.st.d2 - p.d2};
 }
 
-// Q.40 state value -> output intensity (1.0 = 2^16), rounded to nearest.
+// Q.44 state value -> output intensity (1.0 = 2^16), rounded to nearest.
 constexpr std::int32_t to_out(std::int64_t v) {
   return static_cast<std::int32_t>(fx::detail::round_shift_right(v, kStateFrac - kOutFrac));
 }

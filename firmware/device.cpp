@@ -232,7 +232,8 @@ Error Device::set_light(const LightCmd& cmd) {
 
 Error Device::set_method(Method m) {
   // Only implemented methods; the reserved ids of types.hpp are refused until they exist.
-  if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong)
+  if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong &&
+      m != Method::kKuijkBlake && m != Method::kKuijkBlakeNoSkip)
     return fail(Error::kUnknownMethod);
   state_.method = m;
   return ok();
@@ -316,6 +317,8 @@ ShadingMethod& Device::method() {
   switch (state_.method) {
     case Method::kFlat: return flat_;
     case Method::kPhong: return phong_;
+    case Method::kKuijkBlake: return kb_one_vector_;
+    case Method::kKuijkBlakeNoSkip: return kb_no_skip_;
     default: return gouraud_;
   }
 }

@@ -27,6 +27,7 @@
 
 #include "firmware/counters.hpp"
 #include "firmware/geometry.hpp"
+#include "firmware/kb/kb_methods.hpp"
 #include "firmware/method.hpp"
 #include "firmware/methods.hpp"
 #include "firmware/types.hpp"
@@ -147,6 +148,8 @@ class Device {
   FlatMethod flat_;
   GouraudMethod gouraud_;
   PhongMethod phong_;
+  kb::KbOneVectorMethod kb_one_vector_{true};
+  kb::KbOneVectorMethod kb_no_skip_{false};
 };
 
 }  // namespace tp::fw

@@ -40,9 +40,10 @@ enum class Method : std::uint32_t {
   kPhong = 3,
   kDuff = 4,           // reserved
   kBishopWeimer = 5,   // reserved
-  kKuijkBlake = 6,     // reserved
+  kKuijkBlake = 6,     // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
   kBrown = 7,          // reserved
   kVlasic = 8,         // reserved
+  kKuijkBlakeNoSkip = 9,  // the same with every skip disabled (verification: identical image)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

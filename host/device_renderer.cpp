@@ -66,6 +66,8 @@ const std::vector<MethodName>& method_names() {
       {"flat", fw::Method::kFlat, "one Blinn-Phong evaluation per triangle, at the centroid"},
       {"gouraud", fw::Method::kGouraud, "lighting at the vertices, colour interpolated"},
       {"phong", fw::Method::kPhong, "exact per-pixel Blinn-Phong in fixed point"},
+      {"kb", fw::Method::kKuijkBlake, "Kuijk-Blake one-vector angular interpolation (eq. 4)"},
+      {"kb-noskip", fw::Method::kKuijkBlakeNoSkip, "kb with every skip disabled (same image)"},
   };
   return names;
 }

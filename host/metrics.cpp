@@ -60,7 +60,7 @@ Image8 difference_image(const Image8& ref, const Mask& mref, const Image8& ev, c
     if (!mref[p] || !mev[p]) continue;
     for (std::size_t k = 0; k < 3; ++k) {
       const int d = std::abs(int{ref.rgb[3 * p + k]} - int{ev.rgb[3 * p + k]});
-      // Vlasic eq. 6.2: gamma 1/10 makes one-level differences visible (255·(1/255)^0.1 ≈ 146).
+      // Vlasic eq. 6.2: gamma 1/10 makes one-level differences visible (255·(1/255)^0.1 ≈ 146.5).
       out.rgb[3 * p + k] = static_cast<std::uint8_t>(std::lround(255 * std::pow(d / 255.0, 0.1)));
     }
   }

@@ -5,7 +5,9 @@
 //   tinyphong reference scenes/teapot.json -o ref.png [--exr ref.exr] [--angular]
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -104,8 +106,32 @@ int run_reference(const SceneOptions& o, const std::string& out, const std::stri
   return 0;
 }
 
+// The n pixels with the largest channel difference, covered in both images.
+void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& mb, int n) {
+  struct Px { int d, x, y; };
+  std::vector<Px> px;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) + static_cast<std::size_t>(x);
+      if (!ma[i] || !mb[i]) continue;
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int{a.at(x, y)[c]} - int{b.at(x, y)[c]}));
+      if (d > 0) px.push_back({d, x, y});
+    }
+  const auto count = std::min<std::size_t>(px.size(), static_cast<std::size_t>(n));
+  std::partial_sort(px.begin(), px.begin() + static_cast<std::ptrdiff_t>(count), px.end(),
+                    [](const Px& l, const Px& r) { return l.d > r.d; });
+  std::cout << "worst pixels (x, y: first rgb / second rgb):\n";
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto* pa = a.at(px[k].x, px[k].y);
+    const auto* pb = b.at(px[k].x, px[k].y);
+    std::cout << "  " << px[k].x << ", " << px[k].y << ": " << int{pa[0]} << " " << int{pa[1]} << " "
+              << int{pa[2]} << " / " << int{pb[0]} << " " << int{pb[1]} << " " << int{pb[2]} << "\n";
+  }
+}
+
 int run_compare(const std::string& a, const std::string& b, const std::string& diff,
-                std::optional<int> row) {
+                std::optional<int> row, int worst) {
   const Image8 ia = read_png(a), ib = read_png(b);
   if (ia.width != ib.width || ia.height != ib.height) {
     std::cerr << "tinyphong compare: " << a << " is " << ia.width << "x" << ia.height << " but "
@@ -114,6 +140,7 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
   }
   const Mask ma = mask_from_background(ia), mb = mask_from_background(ib);
   print_comparison(compare(ia, ma, ib, mb));
+  if (worst > 0) print_worst(ia, ma, ib, mb, worst);
   if (!diff.empty()) {
     write_png(diff, difference_image(ia, ma, ib, mb));
     std::cout << "difference image (Vlasic eq. 6.2) -> " << diff << "\n";
@@ -162,11 +189,14 @@ int main(int argc, char** argv) {
 
   std::string cmp_a, cmp_b, cmp_diff;
   std::optional<int> cmp_row;
+  int cmp_worst = 0;
   auto* cmp = app.add_subcommand("compare", "error metrics of SECOND against FIRST (the reference)");
   cmp->add_option("first", cmp_a, "reference image")->required()->check(CLI::ExistingFile);
   cmp->add_option("second", cmp_b, "evaluated image")->required()->check(CLI::ExistingFile);
   cmp->add_option("--diff", cmp_diff, "write the gamma-enhanced difference image (eq. 6.2)");
   cmp->add_option("--row", cmp_row, "print the illumination curve of this row (eq. 6.3) as CSV");
+
+  cmp->add_option("--worst", cmp_worst, "list the N pixels that differ most")->check(CLI::NonNegativeNumber);
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
@@ -174,7 +204,7 @@ int main(int argc, char** argv) {
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
-    if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row);
+    if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
     if (*methods) {
       for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
       return 0;

@@ -6,19 +6,29 @@
 #include <CLI/CLI.hpp>
 
 #include "server/pattern_source.hpp"
+#ifdef TP_HAVE_DEVICE
+#include "server/device_source.hpp"
+#endif
 #include "server/server.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"tinyphong-server: the emulated device, live in a browser"};
   tp::server::ServerOptions opt;
+#ifdef TP_HAVE_DEVICE
+  std::string source = "device";
+#else
   std::string source = "pattern";
+#endif
   std::string scene = "teapot", scenes_dir;
+#ifdef TP_SCENES_DIR
+  scenes_dir = TP_SCENES_DIR;
+#endif
   double max_fps = 60, deadline_s = 5;
   int width = 0, height = 0;
   app.add_option("--bind", opt.bind, "address to listen on")->capture_default_str();
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
-  app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes");
+  app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")->capture_default_str();
   app.add_option("--source", source, "frame source: device or pattern (transport tests)")
       ->check(CLI::IsMember({"device", "pattern"}))->capture_default_str();
   app.add_option("--width", width, "initial width (default: the scene's)")->check(CLI::Range(16, 2048));
@@ -33,12 +43,20 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<tp::server::FrameSource> src;
   try {
-    auto p = std::make_unique<tp::server::PatternSource>();
-    auto s = p->settings();
-    if (width) s.width = width;
-    if (height) s.height = height;
-    p->apply(s);
-    src = std::move(p);
+    if (source == "device") {
+#ifdef TP_HAVE_DEVICE
+      src = std::make_unique<tp::server::DeviceSource>(scenes_dir, scene, width, height);
+#else
+      throw std::runtime_error("built without the device (host driver missing)");
+#endif
+    } else {
+      auto p = std::make_unique<tp::server::PatternSource>();
+      auto s = p->settings();
+      if (width) s.width = width;
+      if (height) s.height = height;
+      p->apply(s);
+      src = std::move(p);
+    }
     tp::server::Server server(opt, std::move(src));
     std::cout << "tinyphong: serving " << server.url() << std::endl;
     return server.run();

@@ -102,8 +102,6 @@ void RenderLoop::publish_state() {
   {
     std::lock_guard lk(m_);
     state_ = msg;
-    reference_on_ = flags_.reference;
-    if (!flags_.reference) error_.reset();
   }
   hub_.set_state(msg);
 }
@@ -118,6 +116,11 @@ bool RenderLoop::apply_pending() {
   for (auto& j : jobs) {
     const bool ref_before = flags_.reference;
     std::string err = apply_control(j.cmd, *src_, flags_, step_);
+    {
+      std::lock_guard lk(m_);  // before the worker can see the job below
+      reference_on_ = flags_.reference;
+      if (!flags_.reference) error_.reset();
+    }
     if (err.empty()) {
       changed = true;
       const auto& t = j.cmd.type;

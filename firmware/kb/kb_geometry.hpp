@@ -8,16 +8,17 @@
 //
 // For the one-vector method (Kuijk-Blake eq. 4) a span runs from V_L to V_R on one great
 // circle with unit pole P = V_L × T (T the arc tangent). S is the foot of the perpendicular
-// from O = (0, 0, 1) onto that circle, s = angle(O, S) and φ the signed angle from S along
-// the arc; then cos α = cos φ · cos s. With Q = P × S, O = cos s·S + sin s·P gives
-//   cos s · (V·S) = V_z        and        cos s · (V·Q) = V_x P_y − V_y P_x,
-// so φ(V) = atan2(V_x P_y − V_y P_x, V_z) needs neither S nor a division, and
-// cos s = |(P_x, P_y)|, sin s = |P_z|. φ grows from V_L to V_R by the arc angle θ.
+// from O (the paper's (0, 0, 1), or any fixed unit vector) onto that circle, s = angle(O, S)
+// and φ the signed angle from S along the arc; then cos α = cos φ · cos s. With Q = P × S,
+// O = cos s·S + sin s·P gives
+//   cos s · (V·S) = V·O        and        cos s · (V·Q) = V·(P × O),
+// so φ(V) = atan2(V·(P × O), V·O) needs neither S nor a division, and cos s = |P × O|,
+// sin s = |P·O|. φ grows from V_L to V_R by the arc angle θ.
 //
 // Degenerate cases (all deterministic, all tested in tests/kb):
 //  - V_L ≈ V_R (arc shorter than the rounding of its tangent): φ is constant; the span is
 //    described by the great circle through O and V_L: s = 0, φ = angle(O, V_L), dφ = 0.
-//  - O on the span's great circle: P_z = 0, s = 0 exactly, cos α = cos φ.
+//  - O on the span's great circle: P·O = 0, s = 0 exactly, cos α = cos φ.
 //  - O perpendicular to the circle (P = ±O): cos s = 0, s = π/2, and atan2(0, 0) = 0 gives
 //    φ = 0 (any φ is right: cos α = 0 on the whole span).
 //  - Antipodal arc ends (a rotation of π, possible when normals differ by more than 90° across
@@ -49,6 +50,14 @@ inline constexpr Unit kO{q1_30::zero(), q1_30::zero(), q1_30::one()};  // Kuijk-
 // π in angle_t, rounded (raw = round(π · 2^29)).
 inline constexpr angle_t kPi = angle_t::from_raw(1686629713);
 inline constexpr angle_t kHalfPi = angle_t::from_raw(843314857);
+inline constexpr std::int64_t kTwoPiRaw = 3373259426;  // round(2π · 2^29)
+
+// An angle (raw angle_t units, |v| < 3π) wrapped into [−π, π].
+constexpr std::int64_t wrap_pi(std::int64_t v) {
+  if (v > kPi.raw()) return v - kTwoPiRaw;
+  if (v < -kPi.raw()) return v + kTwoPiRaw;
+  return v;
+}
 
 // c1·u + c2·v per component: an exact wide sum of two products, rounded once.
 constexpr Unit combine(q1_30 c1, const Unit& u, q1_30 c2, const Unit& v) {
@@ -68,6 +77,12 @@ constexpr Unit any_perpendicular(const Unit& v) {
   else if (mag(v.y) <= mag(v.z)) axis.y = q1_30::one();
   else axis.z = q1_30::one();
   return fx::normalize<q1_30>(fx::cross<q1_30>(v, axis));
+}
+
+// |v| of a vector of unit-vector-sized components, correctly rounded.
+constexpr q1_30 length(const Unit& v) {
+  using Sq = fx::Q<2, 60, std::int64_t>;
+  return fx::sqrt<q1_30>(fx::dot<Sq>(v, v));
 }
 
 // A residual of a few LSB: below it an orthogonal part is rounding noise, not a direction
@@ -110,6 +125,50 @@ constexpr Arc make_arc(const Unit& from, const Unit& to) {
   return arc;
 }
 
+// R(N→O), the minimal rotation taking unit n onto unit o (Kuijk-Blake's one-vector rotation),
+// as axis k = normalize(n × o), sin = |n × o|, cos = n·o; applied by Rodrigues' formula
+//   R v = cos·v + sin·(k × v) + (1 − cos)·k (k·v),
+// which stays exact-ish near a half turn (no division by 1 + cos). n = −o: a half turn about a
+// fixed perpendicular of n (any_perpendicular); n = o: the identity.
+struct Rotation {
+  Unit axis{};
+  q1_30 sin{}, cos = q1_30::one();
+};
+constexpr Rotation rotation_to(const Unit& n, const Unit& o) {
+  Rotation r;
+  const Unit a = fx::cross<q1_30>(n, o);
+  r.cos = fx::dot<q1_30>(n, o);
+  // Near a half turn n × o is tiny and its rounding tilts it out of the plane orthogonal to n;
+  // an axis orthogonal to n keeps R·n = cos·n + sin·(k × n) close to o whatever its azimuth.
+  // Normalise first (the projection then carries 1 LSB, not 1 LSB / |n × o|), then project.
+  Unit k0{};
+  const bool has_axis = !is_negligible(a) && fx::try_normalize<q1_30>(a, k0) &&
+                        fx::try_normalize<q1_30>(
+                            combine(q1_30::one(), k0, fx::neg_sat(fx::dot<q1_30>(k0, n)), n),
+                            r.axis);
+  if (!has_axis) {
+    if (r.cos.raw() >= 0) return Rotation{};  // identity
+    r.axis = any_perpendicular(n);
+    r.sin = q1_30::zero();
+    r.cos = fx::neg_sat(q1_30::one());
+    return r;
+  }
+  r.sin = length(a);
+  return r;
+}
+constexpr Unit rotate(const Rotation& r, const Unit& v) {
+  const Unit kxv = fx::cross<q1_30>(r.axis, v);
+  // (1 − cos)·(k·v) <= 2 in magnitude: q1_30's range [−2, 2) holds it up to one LSB.
+  const q1_30 along = fx::mul_sat<q1_30>(fx::sub_sat(q1_30::one(), r.cos), fx::dot<q1_30>(r.axis, v));
+  using W = fx::Q<2, 60, std::int64_t>;
+  const auto one = [&](q1_30 vc, q1_30 kxvc, q1_30 kc) {
+    const std::int64_t sum = fx::mul_wide(r.cos, vc).raw() + fx::mul_wide(r.sin, kxvc).raw() +
+                             fx::mul_wide(along, kc).raw();  // each < 2^61, sum < 2^62.6: no
+    return fx::convert<q1_30>(W::from_raw(sum));              // overflow, |result| <= ~1
+  };
+  return {one(v.x, kxv.x, r.axis.x), one(v.y, kxv.y, r.axis.y), one(v.z, kxv.z, r.axis.z)};
+}
+
 // The point at angle ψ along the arc (equal-angle interpolation, no renormalisation).
 constexpr Unit arc_at(const Arc& arc, angle_t psi) {
   if (!arc.has_direction()) return arc.from;
@@ -130,34 +189,24 @@ struct SpanCircle {
   bool constant = false;  // V_L ≈ V_R: φ does not change along the span
 };
 
-// φ of a unit vector on the circle with pole p (see the header comment).
-constexpr angle_t phi_on_circle(const Unit& v, const Unit& p) {
-  const q1_30 num = fx::dot<q1_30>(fx::Vec3<q1_30>{v.x, fx::neg_sat(v.y), q1_30::zero()},
-                                   fx::Vec3<q1_30>{p.y, p.x, q1_30::zero()});
-  return fx::atan2(num, v.z);
-}
-
-// |(x, y)| of two unit-vector components, correctly rounded.
-constexpr q1_30 hypot2(q1_30 x, q1_30 y) {
-  using Sq = fx::Q<2, 60, std::int64_t>;
-  const Sq sq = fx::dot<Sq>(fx::Vec3<q1_30>{x, y, q1_30::zero()},
-                            fx::Vec3<q1_30>{x, y, q1_30::zero()});
-  return fx::sqrt<q1_30>(sq);
-}
-
-constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr) {
+// For any unit O (the paper takes (0, 0, 1); the methods may pick one per triangle, see
+// shade_kb_one_vector.cpp): with pole P and Q' = P × O, |Q'| = cos s and P·O = ±sin s, and
+//   cos s·(V·S) = V·O,   cos s·(V·Q) = V·Q'   (Q = P × S = Q'/cos s),
+// so φ(V) = atan2(V·Q', V·O), s = atan2(|P·O|, |Q'|).
+constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o = kO) {
   SpanCircle c;
   const Arc arc = make_arc(vl, vr);
   if (!arc.has_direction()) {
     // V_L ≈ V_R: take the circle through O and V_L (s = 0, φ = angle(O, V_L)).
     c.constant = true;
-    c.phi_left = fx::atan2(hypot2(vl.x, vl.y), vl.z);
+    c.phi_left = fx::atan2(length(fx::cross<q1_30>(vl, o)), fx::dot<q1_30>(vl, o));
     return c;
   }
   // Pole of the arc's plane; unit because from ⟂ tangent, both unit.
   const Unit p = fx::cross<q1_30>(arc.from, arc.tangent);
-  c.s = fx::atan2(fx::abs_sat(p.z), hypot2(p.x, p.y));
-  c.phi_left = phi_on_circle(vl, p);
+  const Unit q = fx::cross<q1_30>(p, o);
+  c.s = fx::atan2(fx::abs_sat(fx::dot<q1_30>(p, o)), length(q));
+  c.phi_left = fx::atan2(fx::dot<q1_30>(vl, q), fx::dot<q1_30>(vl, o));
   c.theta = arc.angle;
   return c;
 }
@@ -169,6 +218,8 @@ struct SpanLine {
   dangle_t dphi{};
 };
 
+// φ_first is wrapped into [−π, π] (φ_L + θ may reach 2π, beyond angle_t's range, when V
+// passes the point opposite S: f is even and 2π-periodic in that sense, cos φ being so).
 constexpr SpanLine span_line(const SpanCircle& c, xpos_t x_left, xpos_t x_right,
                              xpos_t first_centre) {
   SpanLine line{c.phi_left, dangle_t::zero()};
@@ -179,7 +230,9 @@ constexpr SpanLine span_line(const SpanCircle& c, xpos_t x_left, xpos_t x_right,
   q1_30 frac = fx::div<q1_30>(fx::sub_sat(first_centre, x_left), width);
   if (frac.raw() < 0) frac = q1_30::zero();
   if (frac > q1_30::one()) frac = q1_30::one();
-  line.phi_first = fx::add_sat(c.phi_left, fx::mul_sat<angle_t>(frac, c.theta));
+  const std::int64_t phi = std::int64_t{c.phi_left.raw()} +
+                           fx::mul_sat<angle_t>(frac, c.theta).raw();  // < 2π + 1 LSB
+  line.phi_first = angle_t::from_raw_sat(wrap_pi(phi));
   line.dphi = fx::div<dangle_t>(c.theta, width);
   return line;
 }

@@ -26,6 +26,7 @@
 
 #include "firmware/cosn_fd.hpp"
 #include "firmware/types.hpp"
+#include "fixedpoint/cordic.hpp"
 
 namespace tp::fw::kb {
 
@@ -43,10 +44,49 @@ constexpr std::uint8_t level_of(std::int64_t v) {
 
 // One term's pieces on the span, per channel (the break points do not depend on the scale, so
 // the three channels share x and piece).
+inline constexpr int kMaxTermSegments = 2 * cosn::kMaxSegments;
+inline constexpr std::int64_t kPiRaw = 1686629713;       // round(π · 2^29)
+inline constexpr std::int64_t kTwoPiRawS = 3373259426;   // round(2π · 2^29)
+
 struct TermSegments {
-  cosn::CosnSegment seg[3][cosn::kMaxSegments];
+  cosn::CosnSegment seg[3][kMaxTermSegments];
   int count = 0;
 };
+
+// Fills one term: f along θ(x) = θ0 + x·dθ with a per-channel scale (Q1.30, in [0, 1]),
+// θ0 in [−π, π]. Channels with the same scale as the previous one (white lights) reuse its
+// segments. When θ leaves [−π, π] inside the span (V passes the point opposite S, possible
+// only with more than ~90° of rotation on a span), the span is cut where it does and the rest
+// continues at θ − 2π (cos φ is 2π-periodic; f is zero near ±π since b < π): cosn's
+// precondition |θ| <= π then holds on both parts, and a term has at most 2 × 5 segments.
+constexpr int make_one_channel(const cosn::CosnCoeffs& coeffs, fx::angle_t theta0,
+                               fx::angle_t dtheta, cosn::scale_t scale, int length,
+                               cosn::CosnSegment* out) {
+  const std::int64_t t0 = theta0.raw(), dt = length > 1 ? dtheta.raw() : 0;
+  const std::int64_t end = t0 + dt * (length - 1);
+  if (end <= kPiRaw && end >= -kPiRaw) return cosn::make_segments(coeffs, theta0, dtheta, scale, length, out);
+  // First pixel past ±π.
+  const std::int64_t k = dt > 0 ? (kPiRaw - t0) / dt + 1 : (t0 + kPiRaw) / (-dt) + 1;
+  const int first = cosn::make_segments(coeffs, theta0, dtheta, scale, static_cast<int>(k), out);
+  const std::int64_t t1 = t0 + dt * k + (dt > 0 ? -kTwoPiRawS : kTwoPiRawS);
+  cosn::CosnSegment* rest = out + first;
+  const int second = cosn::make_segments(coeffs, fx::angle_t::from_raw_sat(t1), dtheta, scale,
+                                         length - static_cast<int>(k), rest);
+  for (int i = 0; i < second; ++i) rest[i].x += static_cast<std::int32_t>(k);
+  return first + second;
+}
+
+constexpr void make_term(TermSegments& t, const cosn::CosnCoeffs& coeffs, fx::angle_t theta0,
+                         fx::angle_t dtheta, const cosn::scale_t scale[3], int length) {
+  t.count = make_one_channel(coeffs, theta0, dtheta, scale[0], length, t.seg[0]);
+  for (int c = 1; c < 3; ++c) {
+    if (scale[c] == scale[c - 1]) {
+      for (int i = 0; i < t.count; ++i) t.seg[c][i] = t.seg[c - 1][i];
+    } else {
+      (void)make_one_channel(coeffs, theta0, dtheta, scale[c], length, t.seg[c]);
+    }
+  }
+}
 
 constexpr bool is_zero_piece(int piece) { return piece == 0 || piece == 4; }
 
@@ -96,7 +136,12 @@ class SpanSections {
   }
 
   // The running Q.40 values per pixel (tests: bit-exactness of the forward differencing).
+  // Spans refused by the overflow guard are evaluated directly (Stats::direct).
   constexpr Stats evaluate_raw(std::int64_t* r, std::int64_t* g, std::int64_t* b) {
+    if (!safe_) {
+      for (int x = 0; x < length_; ++x) RawSink{r, g, b}.put(x, direct_raw(x, 0), direct_raw(x, 1), direct_raw(x, 2));
+      return Stats{1, 0, true};
+    }
     return run(RawSink{r, g, b}, false);
   }
 
@@ -207,7 +252,7 @@ class SpanSections {
   int length_ = 0, count_ = 0, terms_count_ = 0;
   bool safe_ = true;
   std::int64_t ambient_[3] = {0, 0, 0};
-  Event events_[kMaxTerms * cosn::kMaxSegments];
+  Event events_[kMaxTerms * kMaxTermSegments];
   TermSegments terms_[kMaxTerms];
 };
 

@@ -89,13 +89,19 @@ function onReference(h) {
 // Vlasic eq. 6.2: gamma-enhanced difference image, 255·(|Δ|/255)^(1/10), channel by channel.
 function updateComparison() {
   const dev = lastRef ? devices.get(lastRef.id) : null;
-  drawProbe(lastDevice, dev && lastRef);
+  redrawProbe();
   if (!dev || dev.width !== lastRef.width || dev.height !== lastRef.height) return;
   const lut = new Uint8Array(256);
   for (let i = 0; i < 256; ++i) lut[i] = Math.round(255 * Math.pow(i / 255, 0.1));
   const n = dev.width * dev.height * 3, diff = new Uint8Array(n);
   for (let i = 0; i < n; ++i) diff[i] = lut[Math.abs(dev.rgb[i] - lastRef.rgb[i])];
   paint($('heat'), dev.width, dev.height, diff);
+}
+
+// The probe compares like with like: with a reference, the device frame it was computed for.
+function redrawProbe() {
+  const paired = lastRef ? devices.get(lastRef.id) : null;
+  drawProbe(paired || lastDevice, !!paired);
 }
 
 // Vlasic eq. 6.3: illumination (R+G+B)/(3·255) along one row, device and reference.
@@ -192,6 +198,11 @@ function fillSelect(id, values, current) {
 
 function applyState(s) {
   tp.state = s;
+  if (!s.reference && lastRef) { // comparison switched off: drop the stale reference
+    lastRef = null;
+    $('ref-id').textContent = '';
+    redrawProbe();
+  }
   fillSelect('scene', s.scenes, s.scene);
   fillSelect('method', s.methods, s.method);
   for (const k of ['width', 'height', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
@@ -262,14 +273,14 @@ function wire() {
   $('zoom').onchange = (e) => {
     zoom = Number(e.target.value);
     for (const id of ['device', 'ref', 'heat']) sizeCanvas($(id), $(id).width, $(id).height);
-    drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+    redrawProbe();
   };
-  $('row').onchange = () => drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+  $('row').onchange = () => redrawProbe();
   for (const id of ['device', 'ref', 'heat']) {
     $(id).onclick = (e) => {
       const r = e.target.getBoundingClientRect();
       $('row').value = Math.floor((e.clientY - r.top) / zoom);
-      drawProbe(lastDevice, lastRef && devices.get(lastRef.id));
+      redrawProbe();
     };
   }
 }

@@ -19,7 +19,7 @@ double err_of(const CosnParams& p, int n, int samples = 3000) {
   return ref::max_error(n, to_d(p.a), to_d(p.b), samples);
 }
 
-// Limits pinned from `bench/accuracy_cosn` (build/h2: ./bench/accuracy_cosn), 2026-11-22:
+// Limits pinned from `build/h2/bench/accuracy_cosn` (2026-11-22), margin to the brief's targets:
 // closed form max 2.458 % at n = 1, 1.830 % at n = 2, 1.484 % over 3..10,000 (n = 14).
 // n = 2 cannot meet 1.5 %: the minimax optimum of f itself is 1.765 % there.
 double closed_limit(int n) { return n == 1 ? 0.025 : (n == 2 ? 0.0185 : 0.015); }
@@ -46,11 +46,13 @@ TEST(CosnParams, EverySourceHasValidCoefficients) {
 }
 
 // The paper's formulas are a least-squares fit for n <= 125; beyond, b tends to 0.2 while the
-// optimum shrinks like 1/√n. Measured (accuracy_cosn): 1.84 % at n = 20, 3.22 % at n = 125,
-// 44.3 % at n = 1000, 78.3 % at n = 10,000.
+// optimum shrinks like 1/√n. Measured (build/h2/bench/accuracy_cosn, 2026-11-22): 5.23 % at
+// n = 1, 1.46 % at n = 20, 5.56 % at n = 125, 38.6 % at n = 1000, 72.8 % at n = 10,000.
 TEST(CosnParams, PaperFormulasDegradePast125) {
-  EXPECT_LT(err_of(paper_params(20), 20), 0.025);
-  EXPECT_LT(err_of(paper_params(125), 125), 0.04);
+  EXPECT_LT(err_of(paper_params(1), 1), 0.055);
+  EXPECT_GT(err_of(paper_params(1), 1), 0.050);
+  EXPECT_LT(err_of(paper_params(20), 20), 0.016);
+  EXPECT_LT(err_of(paper_params(125), 125), 0.058);
   EXPECT_GT(err_of(paper_params(1000), 1000), 0.30);
   EXPECT_GT(err_of(paper_params(10000), 10000), 0.60);
 }

@@ -83,8 +83,8 @@ TEST(Reference, FlatQuadUnderAPointLightMatchesTheClosedForm) {
 
 TEST(Reference, FineSphereMatchesTheAnalyticSphere) {
   // Octahedron subdivided 5× (8192 triangles) vs the exact sphere normal (x, y, √(1−x²−y²))
-  // at pixel centres with r < 0.9. Measured max |Δ| (linear intensity) 0.0047 at 128×128
-  // (build/h4/tests/host/host_reference_test, printed below); pinned at 0.01.
+  // at pixel centres with r < 0.9. Measured max |Δ| (linear intensity) 0.00179 at 128×128
+  // (build/h4m/tests/host/host_reference_test prints it); pinned at 0.005 (2.8× margin).
   FrameSetup f = ortho_frame(128, 128, 1.25);
   f.lights = {{LightKind::Point, 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5)), {1, 1, 1}}};
   const Mesh s = octa_sphere(5);
@@ -102,7 +102,7 @@ TEST(Reference, FineSphereMatchesTheAnalyticSphere) {
       ++n;
     }
   std::printf("fine sphere: max |linear error| = %.6f over %d pixels\n", worst, n);
-  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(worst, 0.005);
 }
 
 TEST(Coverage, TopLeftRuleOnPixelCentres) {
@@ -215,7 +215,8 @@ TEST(Angular, EqualsPhongWhenNormalsAreEqual) {
 
 TEST(Angular, DiffersFromPhongOnACoarseSphereButNotMuch) {
   // sphere-32 scene setup at 256×256. Measured colour correctness (eq. 6.1) of Angular vs
-  // Phong: printed below; pinned with a margin.
+  // Phong 0.99782, max 5 levels (printed by this test); pinned at > 0.98 (the schemes differ
+  // visibly on 32 triangles, by far less than Gouraud's 0.94 of DESIGN §9).
   FrameSetup f = ortho_frame(256, 256, 1.25);
   f.lights = {{LightKind::Point, 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5)), {1, 1, 1}}};
   const Mesh s = octa_sphere(1);

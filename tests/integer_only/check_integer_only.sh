@@ -52,9 +52,10 @@ case "$mode" in
   tokens)
     for f in $headers $sources "$@"; do
       path=$f; [ -f "$path" ] || path="$src/$f"
-      # Strip // and /* */ comments and string literals, then look for floating-point words.
+      # Strip // and /* */ comments and string literals, then look for floating-point words and
+      # literals (1.5, 2., .5, 1e3f are caught; identifiers like theta0.raw() are not).
       hits=$(sed -e 's://.*$::' "$path" | perl -0pe 's:/\*.*?\*/::gs; s/"(\\.|[^"\\])*"/""/g' |
-             grep -nE '\b(float|double)\b|<cmath>|<math\.h>|\bstd::(sin|cos|tan|sqrt|pow|exp|log)\b|[0-9]\.[0-9]*[fF]?\b' || true)
+             grep -nE '\b(float|double)\b|<cmath>|<math\.h>|\bstd::(sin|cos|tan|sqrt|pow|exp|log)\b|(^|[^A-Za-z0-9_.])[0-9]+\.[0-9]*([eE][-+]?[0-9]+)?[fFlL]?([^A-Za-z0-9_]|$)|(^|[^A-Za-z0-9_.])\.[0-9]+' || true)
       if [ -n "$hits" ]; then echo "FAIL: floating point in $f:"; echo "$hits" | head -n 5; status=1; fi
     done
     ;;

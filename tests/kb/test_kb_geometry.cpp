@@ -173,3 +173,56 @@ TEST(KbGeometry, SpanLineStepsPhiPerPixel) {
   std::printf("span line: max |φ err| over 4096 px %.3g rad\n", worst);
   EXPECT_LT(worst, 1e-9);
 }
+
+// Any fixed O works (the methods may take one per triangle): rotating V_L, V_R and O together
+// leaves s, φ_L and θ unchanged.
+TEST(KbGeometry, SpanCircleForAnyO) {
+  std::mt19937_64 rng(6);
+  double worst = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const dvec3 a = random_unit(rng);
+    const dvec3 b = at_angle(rng, a, 0.01 + 1.5 * (trial % 50) / 50.0);
+    const dvec3 o = random_unit(rng);
+    // The rotation taking o to z, applied to all three.
+    const dvec3 ar = rotate_n_to_o(o, a), br = rotate_n_to_o(o, b);
+    const kb::SpanCircle general = kb::span_circle(unit(a), unit(b), unit(o));
+    const kb::SpanCircle paper = kb::span_circle(unit(ar), unit(br));
+    // Compare cos α = cos φ·cos s at both ends (φ alone is ill-conditioned when cos s → 0).
+    for (double t : {0.0, 1.0}) {
+      const auto cos_alpha = [t](const kb::SpanCircle& c) {
+        return std::cos(to_d(c.phi_left) + t * to_d(c.theta)) * std::cos(to_d(c.s));
+      };
+      worst = std::max(worst, std::fabs(cos_alpha(general) - cos_alpha(paper)));
+    }
+    worst = std::max(worst, std::fabs(to_d(general.theta) - to_d(paper.theta)));
+  }
+  std::printf("span circle, general O vs rotated to z: max |Δ cos α|, |Δθ| %.3g\n", worst);
+  // Measured 3.5e-9 (`kb_geometry_test --gtest_filter=*AnyO*`): both sides round their inputs
+  // to q1_30 separately. Pinned at 1.5e-8.
+  EXPECT_LT(worst, 1.5e-8);
+}
+
+// R(N→O): takes N onto O and keeps angles, so angle(R·L, O) = angle(N, L) (the one-vector
+// identity, Kuijk-Blake Figure 9); including N = O, N = −O and N near −O.
+TEST(KbGeometry, RotationToOKeepsTheAngle) {
+  std::mt19937_64 rng(7);
+  double worst_map = 0, worst_angle = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    dvec3 n = random_unit(rng);
+    const dvec3 o = trial % 4 == 0 ? dvec3{0, 0, 1} : random_unit(rng);
+    if (trial % 50 == 1) n = o;
+    if (trial % 50 == 2) n = -o;
+    if (trial % 50 == 3) n = glm::normalize(-o + dvec3{1e-7, -2e-7, 0});
+    const dvec3 l = random_unit(rng);
+    const kb::Rotation r = kb::rotation_to(unit(n), unit(o));
+    worst_map = std::max(worst_map, max_abs(to_d(kb::rotate(r, unit(n))) - to_d(unit(o))));
+    const dvec3 v = to_d(kb::rotate(r, unit(l)));
+    worst_angle = std::max(worst_angle, std::fabs(glm::dot(v, to_d(unit(o))) -
+                                                  glm::dot(to_d(unit(n)), to_d(unit(l)))));
+    EXPECT_NEAR(glm::length(v), 1.0, 1e-8);
+  }
+  std::printf("rotation to O: max |R·N − O| %.3g, max |Δ cos| %.3g\n", worst_map, worst_angle);
+  // Measured 2.8e-9 and 2.7e-9 (`kb_geometry_test --gtest_filter=*RotationToO*`); pinned at 1e-8.
+  EXPECT_LT(worst_map, 1e-8);
+  EXPECT_LT(worst_angle, 1e-8);
+}

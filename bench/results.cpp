@@ -1,0 +1,131 @@
+// Regenerates the tables of docs/RESULTS.md: for every paper scene and every shading method,
+// the error against the double references and the frame time as a ratio to Gouraud measured
+// in the same run (DESIGN §9). Timing: the methods are interleaved round-robin, `--reps`
+// rounds, and each method's median frame time is taken, so that machine noise hits all
+// methods alike.
+//
+//   build/release/bench/tinyphong-results [--scenes a,b] [--methods x,y] [--reps 7] [--size WxH]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "host/device_renderer.hpp"
+#include "host/metrics.hpp"
+#include "host/scene.hpp"
+
+namespace {
+
+using namespace tp::host;
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Row {
+  std::string method;
+  Comparison phong, angular;
+  double ms = 0;
+  std::uint64_t pixels = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tinyphong results: error and time ratio per scene and method"};
+  std::string scenes_arg = "sphere-32,sphere-40,sphere-512,dodecahedron-30,triangle,teapot";
+  std::string methods_arg;
+  std::string size;
+  int reps = 7;
+  app.add_option("--scenes", scenes_arg, "comma-separated scene names from scenes/");
+  app.add_option("--methods", methods_arg, "comma-separated methods (default: all)");
+  app.add_option("--reps", reps, "timing rounds per method (median taken)")->check(CLI::Range(1, 1000));
+  app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
+  CLI11_PARSE(app, argc, argv);
+
+  std::vector<std::string> methods = split(methods_arg);
+  if (methods.empty())
+    for (const auto& m : method_names()) methods.emplace_back(m.name);
+  if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())
+    methods.insert(methods.begin(), "gouraud");  // the yardstick of every ratio
+
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  std::cout << "Measured " << date << "; error against the double Phong reference (and the "
+               "angular one), time = median frame time / Gouraud's in the same run ("
+            << reps << " interleaved rounds).\n\n";
+
+  for (const std::string& name : split(scenes_arg)) {
+    Scene scene;
+    try {
+      scene = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
+      if (!size.empty()) {
+        int w = 0, h = 0;
+        if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) {
+          std::cerr << "--size: expected WIDTHxHEIGHT\n";
+          return 2;
+        }
+        scene.width = w;
+        scene.height = h;
+      }
+    } catch (const SceneError& e) {
+      std::cerr << e.what() << "\n";
+      return 1;
+    }
+    DeviceRenderer device(scene.width, scene.height);
+    device.set_scene(scene);
+    const ReferenceFrame ref = device.render_reference(0.0, Interpolation::Phong);
+    const ReferenceFrame ang = device.render_reference(0.0, Interpolation::Angular);
+
+    std::map<std::string, std::vector<double>> times;
+    std::map<std::string, Row> rows;
+    for (int round = 0; round < reps; ++round) {
+      for (const std::string& m : methods) {
+        Scene s = scene;
+        s.method = m;
+        device.set_scene(s);
+        const DeviceFrame f = device.render(0.0);
+        times[m].push_back(f.render_ms);
+        if (round == 0) {
+          Row& r = rows[m];
+          r.method = m;
+          r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
+          r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
+          for (const auto& [k, v] : f.counters)
+            if (k == "pixels_written") r.pixels = v;
+        }
+      }
+    }
+    const double gouraud = median(times["gouraud"]);
+    std::printf("### %s (%dx%d, %zu light%s)\n\n", name.c_str(), scene.width, scene.height,
+                scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
+    std::printf("| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
+                "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
+    for (const std::string& m : methods) {
+      const Row& r = rows[m];
+      const double ms = median(times[m]);
+      std::printf("| %s | %.4f | %.1f | %.3f | %d | %.3f / %d | %.2f | %.2f |\n", m.c_str(),
+                  r.phong.color_correctness, r.phong.psnr_db, r.phong.mean_abs, r.phong.max_abs,
+                  r.angular.mean_abs, r.angular.max_abs, ms, ms / gouraud);
+    }
+    std::printf("\n");
+  }
+  return 0;
+}

@@ -1,0 +1,121 @@
+// What the three Kuijk-Blake methods share: per-vertex directions (L, H, the eye vector),
+// per-term weights and (a, b), the triangle's edge arcs and the span ends' screen positions.
+//
+// Terms: each light that is on gives two terms, diffuse (f with the (a, b) of n = 1, weight
+// Il_c·kd·O_c) and specular (f with the material's (a, b), weight Il_c·ks). Diffuse with
+// f(n = 1) instead of max(0, cos) is the paper's choice: f falls smoothly to zero at b ≈ 1.8 rad
+// (past the terminator at π/2) and removes the Mach band there (Kuijk-Blake section 2;
+// measured against a clamped cosine in docs/KUIJK-BLAKE.md).
+//
+// (a, b) sources: the material's (a, b) when the host set them (b > 0), else the generated
+// minimax fit for the material's n (cosn::table_params, the most accurate source); diffuse
+// always uses table_params(1).
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/cosn.hpp"
+#include "firmware/cosn_fd.hpp"
+#include "firmware/kb/kb_geometry.hpp"
+#include "firmware/kb/kb_sections.hpp"
+#include "firmware/method.hpp"
+#include "firmware/vecmath.hpp"
+
+namespace tp::fw::kb {
+
+// Eye-direction at a vertex: toward the eye at the origin, or +z for an eye at infinity.
+inline Unit eye_direction(const ShadeContext& ctx, const Vec3q16& p) {
+  if (ctx.eye == EyeMode::kInfinite) return kO;
+  return normalize_wide(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
+                        -std::int64_t{p.z.raw()});
+}
+
+// Unit vector toward the light from p.
+inline Unit light_direction(const LightState& l, const Vec3q16& p) {
+  if (l.type == LightType::kDirectional) return l.direction;
+  return normalize_wide(std::int64_t{l.position.x.raw()} - p.x.raw(),
+                        std::int64_t{l.position.y.raw()} - p.y.raw(),
+                        std::int64_t{l.position.z.raw()} - p.z.raw());
+}
+
+// Blinn's halfway vector normalize(L + E).
+inline Unit halfway(const Unit& l, const Unit& e) {
+  return normalize_wide(std::int64_t{l.x.raw()} + e.x.raw(), std::int64_t{l.y.raw()} + e.y.raw(),
+                        std::int64_t{l.z.raw()} + e.z.raw());
+}
+
+// Il_c · k · O_c · 255/4096 in Q1.30 (the span value unit, kb_sections.hpp): Il_c <= 16 in
+// Q15.16 (raw < 2^21), k·O_c <= 1 in Q1.30: the product·255 stays below 2^59.
+inline q1_30 term_weight(q15_16 intensity, q1_30 k_times_colour) {
+  const std::int64_t p = std::int64_t{intensity.raw()} * k_times_colour.raw() * 255;
+  return q1_30::from_raw_sat(fx::detail::round_shift_right(p, 16 + 12));
+}
+
+// ka·O_c in span units (Q.40, 255·I/4096).
+inline std::int64_t ambient_value(q1_30 ka, q1_30 colour) {
+  const q1_30 k = fx::mul_sat<q1_30>(ka, colour);
+  return fx::detail::round_shift_right(std::int64_t{k.raw()} * 255, 2);  // ·2^10 / 2^12
+}
+
+inline cosn::CosnParams specular_params(const MaterialCmd& m) {
+  if (m.b.raw() > 0 && m.a.raw() > 0 && m.a < m.b) return {m.a, m.b};
+  return cosn::table_params(static_cast<int>(m.n));
+}
+inline cosn::CosnParams diffuse_params() { return cosn::table_params(1); }
+
+// f(θ) of one term at a single angle, in Q.40 (one-pixel segment of the same polynomial).
+inline std::int64_t f_at(const cosn::CosnCoeffs& c, angle_t theta) {
+  cosn::CosnSegment seg[cosn::kMaxSegments];
+  (void)cosn::make_segments(c, theta, angle_t::zero(), q1_30::one(), 1, seg);
+  return seg[0].st.v;
+}
+
+// scale_c = weight_c · f (f in Q.40, <= 2^40), rounded into Q1.30.
+inline q1_30 scaled(q1_30 weight, std::int64_t f_q40) {
+  return q1_30::from_raw_sat(
+      fx::detail::round_shift_right(std::int64_t{weight.raw()} * (f_q40 >> 10), 30));
+}
+
+// The triangle's three edges, as the rasterizer names them (EdgePos from -> to):
+// index 0: 0 -> 1, 1: 1 -> 2, 2: 2 -> 0. An EdgePos in the other direction reads the same
+// edge at 1 − t.
+struct EdgeRef {
+  int index = 0;
+  bool reversed = false;
+};
+constexpr EdgeRef edge_ref(const EdgePos& e) {
+  const int a = e.from, b = e.to;
+  if ((a + 1) % 3 == b) return {a, false};
+  return {b, true};
+}
+constexpr q1_30 edge_fraction(const EdgePos& e, bool reversed) {
+  return reversed ? fx::sub_sat(q1_30::one(), e.t) : e.t;
+}
+
+// Screen x (pixels, Q15.16) of a span end: sx_from + t·(sx_to − sx_from), sx in 1/16 pixel.
+// |sx| <= 2^18 (raster.hpp), t <= 2^30 raw: the product is below 2^49.
+inline xpos_t edge_x(const Triangle& tri, const EdgePos& e) {
+  const std::int64_t from = tri.v[e.from].sx, to = tri.v[e.to].sx;
+  const std::int64_t num = (from << 30) + std::int64_t{e.t.raw()} * (to - from);
+  return xpos_t::from_raw_sat(fx::detail::round_shift_right(num, 30 + 4 - 16));
+}
+inline xpos_t pixel_centre(std::int32_t x) {
+  return xpos_t::from_raw_sat((std::int64_t{x} << 16) + (std::int64_t{1} << 15));
+}
+
+// Arcs of a per-vertex direction along the three edges.
+struct EdgeArcs {
+  Arc arc[3];
+  void set(const Unit v[3]) {
+    for (int i = 0; i < 3; ++i) arc[i] = make_arc(v[i], v[(i + 1) % 3]);
+  }
+  Unit at(const EdgePos& e) const {
+    const EdgeRef r = edge_ref(e);
+    return arc_at_fraction(arc[r.index], edge_fraction(e, r.reversed));
+  }
+};
+
+// φ along the span for cosn: the per-pixel step in angle_t (cosn's dθ format).
+inline angle_t dphi_angle(const SpanLine& line) { return fx::convert<angle_t>(line.dphi); }
+
+}  // namespace tp::fw::kb

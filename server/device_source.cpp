@@ -1,0 +1,132 @@
+#include "server/device_source.hpp"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "host/reference.hpp"
+
+namespace tp::server {
+
+namespace {
+
+ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
+  ViewSettings s;
+  s.scene = name;
+  s.method = sc.method;
+  const host::Material& m = sc.material;
+  s.use_ab = m.a.has_value() && m.b.has_value();
+  s.n = m.n;
+  s.a = m.a.value_or(0);
+  s.b = m.b.value_or(0);
+  s.ka = m.ka;
+  s.kd = m.kd;
+  s.ks = m.ks;
+  s.color = {m.colour.x, m.colour.y, m.colour.z};
+  for (const auto& l : sc.lights)
+    s.lights.push_back({l.kind == host::LightKind::Point, {l.vector.x, l.vector.y, l.vector.z},
+                        {l.colour.x, l.colour.y, l.colour.z}});
+  s.width = sc.width;
+  s.height = sc.height;
+  return s;
+}
+
+host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
+  sc.method = s.method;
+  host::Material& m = sc.material;
+  if (s.use_ab) {
+    m.a = s.a;
+    m.b = s.b;
+  } else {
+    m.n = s.n;
+    m.a.reset();
+    m.b.reset();
+  }
+  m.ka = s.ka;
+  m.kd = s.kd;
+  m.ks = s.ks;
+  m.colour = {s.color[0], s.color[1], s.color[2]};
+  sc.lights.clear();
+  for (const auto& l : s.lights)
+    sc.lights.push_back({l.point ? host::LightKind::Point : host::LightKind::Directional,
+                         {l.vector[0], l.vector[1], l.vector[2]}, {l.color[0], l.color[1], l.color[2]}});
+  sc.width = s.width;
+  sc.height = s.height;
+  return sc;
+}
+
+}  // namespace
+
+DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height)
+    : dir_(std::move(scenes_dir)) {
+  for (const auto& e : std::filesystem::directory_iterator(dir_))
+    if (e.is_regular_file() && e.path().extension() == ".json") scene_names_.push_back(e.path().stem().string());
+  std::sort(scene_names_.begin(), scene_names_.end());
+  if (std::find(scene_names_.begin(), scene_names_.end(), scene) == scene_names_.end())
+    throw std::runtime_error("no scene '" + scene + "' in " + dir_.string());
+  host::Scene sc = host::load_scene(dir_ / (scene + ".json"));
+  if (width > 0) sc.width = width;
+  if (height > 0) sc.height = height;
+  if (auto e = install(std::move(sc), scene); !e.empty()) throw std::runtime_error(e);
+}
+
+std::vector<std::string> DeviceSource::methods() const {
+  std::vector<std::string> out;
+  for (const auto& m : host::method_names()) out.emplace_back(m.name);
+  return out;
+}
+
+std::string DeviceSource::install(host::Scene sc, const std::string& name) {
+  try {
+    host::method_from_name(sc.method);  // names the valid choices if not one
+    renderer_.set_scene(sc);            // on failure the device keeps the previous scene
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  settings_ = to_settings(sc, name);
+  scene_ = std::make_shared<const host::Scene>(std::move(sc));
+  return "";
+}
+
+std::string DeviceSource::apply(const ViewSettings& s) {
+  if (s.lights.size() > static_cast<std::size_t>(host::kMaxLights)) return "too many lights";
+  return install(with_settings(*scene_, s), s.scene);
+}
+
+std::string DeviceSource::load_scene(const std::string& name) {
+  if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
+    return "unknown scene '" + name + "'";
+  try {
+    return install(host::load_scene(dir_ / (name + ".json")), name);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+RenderedFrame DeviceSource::render(double rotation) {
+  host::DeviceFrame d = renderer_.render(rotation);
+  RenderedFrame f;
+  f.image.width = d.width;
+  f.image.height = d.height;
+  f.image.rgb = std::move(d.rgb);
+  f.image.covered = std::move(d.covered);
+  f.counters = std::move(d.counters);
+  f.render_ms = d.render_ms;
+  return f;
+}
+
+std::function<Image()> DeviceSource::reference_task(double rotation) {
+  // Same as DeviceRenderer::render_reference, but on a scene snapshot, so that it can run on
+  // the reference worker while the render loop keeps using the renderer.
+  return [sc = scene_, rotation]() {
+    const host::FrameSetup frame = host::frame_setup(*sc);
+    const glm::dmat4 spin = glm::rotate(glm::dmat4(1.0), rotation, glm::dvec3(0, 1, 0));
+    std::vector<host::DrawMesh> meshes;
+    for (const auto& m : sc->meshes)
+      meshes.push_back({&m.mesh, host::view_matrix(sc->camera) * spin * m.transform.matrix()});
+    host::ReferenceImage ref = host::render_reference(frame, meshes);
+    return Image{ref.rgb8.width, ref.rgb8.height, std::move(ref.rgb8.rgb), std::move(ref.mask)};
+  };
+}
+
+}  // namespace tp::server

@@ -1,0 +1,125 @@
+// End-to-end test of the viewer in a real browser (Debian's chromium, driven by playwright-core):
+// starts tinyphong-server on a free loopback port, loads the page, and checks that
+//  1. frames arrive and are painted, and the painted canvas pixels hash (FNV-1a 64, RGB) to the
+//     checksum the server reports for that frame — byte for byte what the server sent;
+//  2. changing the method from the page changes the counters and the image;
+//  3. the reference comparison arrives (reference frame paired with the device frame, error stats);
+//  4. the page reconnects by itself when the server restarts.
+// Usage: node e2e.mjs <path to tinyphong-server>
+import { spawn } from 'node:child_process';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const serverBin = process.argv[2];
+if (!serverBin) throw new Error('usage: node e2e.mjs <tinyphong-server>');
+const log = (...a) => console.log('[e2e]', ...a);
+let failures = 0;
+function check(ok, what) {
+  log(ok ? 'PASS' : 'FAIL', what);
+  if (!ok) failures++;
+}
+
+function startServer(port) {
+  return new Promise((resolve, reject) => {
+    const args = ['--port', String(port), '--scene', 'teapot', '--width', '320', '--height', '240', '--max-fps', '30'];
+    const proc = spawn(serverBin, args, { stdio: ['ignore', 'pipe', 'inherit'] });
+    let out = '';
+    const timer = setTimeout(() => reject(new Error('server did not start in 30 s: ' + out)), 30000);
+    proc.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/serving (http:\/\/127\.0\.0\.1:(\d+)\/)/);
+      if (m) { clearTimeout(timer); resolve({ proc, url: m[1], port: Number(m[2]) }); }
+    });
+    proc.on('exit', (code) => reject(new Error('server exited early: ' + code + ' ' + out)));
+  });
+}
+
+function stopServer(s) {
+  return new Promise((resolve) => {
+    if (s.proc.exitCode !== null) return resolve(s.proc.exitCode);
+    const t = setTimeout(() => { s.proc.kill('SIGKILL'); }, 5000);
+    s.proc.removeAllListeners('exit');
+    s.proc.on('exit', (code) => { clearTimeout(t); resolve(code); });
+    s.proc.kill('SIGTERM');
+  });
+}
+
+// Waits until the page's frame is settled: the painted frame is the last one the server reports.
+async function settled(page, minId = 0) {
+  await page.waitForFunction((min) => {
+    const t = window.tp;
+    return t.painted && t.stats && t.painted.id >= min && t.stats.frame.id === t.painted.id;
+  }, minId, { timeout: 60000, polling: 100 });
+  return page.evaluate(() => ({ painted: window.tp.painted, stats: window.tp.stats, state: window.tp.state }));
+}
+
+const userDir = mkdtempSync(path.join(tmpdir(), 'tp-chromium-'));
+let server = await startServer(0);
+let context;
+try {
+  context = await chromium.launchPersistentContext(userDir, {
+    executablePath: '/usr/bin/chromium',
+    headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+           '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  });
+  const page = context.pages()[0] ?? (await context.newPage());
+  page.on('console', (m) => { if (m.type() === 'error') log('console error:', m.text()); });
+  page.on('pageerror', (e) => { log('page error:', e.message); failures++; });
+  await page.goto(server.url);
+
+  // 1. Frames arrive and are painted.
+  await page.waitForFunction(() => window.tp.framesPainted >= 3, null, { timeout: 60000 });
+  check(true, 'frames arrive and are painted');
+  // Stop the animation from the page, so that one frame stays and can be compared.
+  await page.uncheck('#animate');
+  await page.waitForFunction(() => window.tp.state && window.tp.state.animate === false, null, { timeout: 10000 });
+  const a = await settled(page);
+  check(a.painted.checksum === a.stats.frame.checksum,
+        `painted pixels of frame ${a.painted.id} hash to the server's checksum (${a.painted.checksum} vs ${a.stats.frame.checksum})`);
+  check(a.painted.sent === a.stats.frame.checksum, 'the frame header carried the same checksum');
+  check(a.painted.width === 320 && a.painted.height === 240, 'native size 320x240');
+  const pixelsWritten = a.stats.counters.pixels_written ?? 0;
+  check(pixelsWritten > 1000, `the device shaded the teapot (pixels_written ${pixelsWritten})`);
+
+  // 2. Change the method from the page: the counters and the image change.
+  const methods = a.state.methods;
+  const other = methods.find((m) => m !== a.state.method && m === 'flat') ?? methods.find((m) => m !== a.state.method);
+  log('methods', methods.join(','), '— switching', a.state.method, '->', other);
+  await page.selectOption('#method', other);
+  await page.waitForFunction((m) => window.tp.state.method === m, other, { timeout: 10000 });
+  const b = await settled(page, a.painted.id + 1);
+  check(b.painted.checksum === b.stats.frame.checksum, `after the switch, painted frame ${b.painted.id} matches the server's checksum`);
+  check(b.painted.checksum !== a.painted.checksum, 'the image changed');
+  check(JSON.stringify(b.stats.counters) !== JSON.stringify(a.stats.counters), 'the counters changed');
+
+  // 3. Reference comparison: a reference frame paired with the device frame, and error stats.
+  await page.check('#reference');
+  await page.waitForFunction(() => window.tp.refsPainted >= 1 && window.tp.stats.error, null, { timeout: 60000 });
+  const e = await page.evaluate(() => window.tp.stats.error);
+  check(e.frame_id === b.painted.id && e.correctness > 0.5 && e.correctness <= 1,
+        `reference comparison for frame ${e.frame_id}: colour correctness ${e.correctness.toFixed(5)}`);
+  const heatPainted = await page.evaluate(() => document.getElementById('heat').width === 320);
+  check(heatPainted, 'the difference image is painted');
+
+  // 4. Restart the server on the same port: the page reconnects and paints again.
+  const port = server.port;
+  const before = await page.evaluate(() => window.tp.framesPainted);
+  await stopServer(server);
+  await page.waitForFunction(() => !window.tp.connected, null, { timeout: 10000 });
+  server = await startServer(port);
+  await page.waitForFunction((n) => window.tp.connected && window.tp.framesPainted > n, before, { timeout: 30000 });
+  check(true, 'reconnected after a server restart');
+} catch (err) {
+  log('FAIL', err.stack || err);
+  failures++;
+} finally {
+  if (context) await context.close();
+  const code = await stopServer(server);
+  check(code === 0, `server exited cleanly on SIGTERM (code ${code})`);
+  rmSync(userDir, { recursive: true, force: true });
+}
+log(failures ? `${failures} failure(s)` : 'all passed');
+process.exit(failures ? 1 : 0);

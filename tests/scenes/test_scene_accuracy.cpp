@@ -1,0 +1,129 @@
+// Every device method against the double-precision reference on every paper scene (DESIGN §9).
+//
+// The bounds are measured, then pinned with a margin, so that a regression in any method shows.
+// Origin of every number below: the release build of
+//   build/release/bench/tinyphong-results --reps 3
+// on 2026-11-22 (the same table as docs/RESULTS.md); this test renders the same frames and
+// recomputes the metrics. Margins: colour correctness -0.001, mean |error| x1.05 + 0.05 levels,
+// max |error| +2 levels. The device is integer-only and deterministic, so the measured values
+// reproduce exactly on any machine; the margins only absorb deliberate small changes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "host/device_renderer.hpp"
+#include "host/metrics.hpp"
+#include "host/scene.hpp"
+
+namespace tp::host {
+namespace {
+
+struct Measured {
+  const char* scene;
+  const char* method;
+  double color_correctness;  // as measured
+  double mean_abs;           // levels, as measured
+  int max_abs;               // levels, as measured
+};
+
+// The values of docs/RESULTS.md (Phong reference).
+constexpr Measured kMeasured[] = {
+    {"sphere-32", "flat", 0.9438, 14.328, 141},
+    {"sphere-32", "gouraud", 0.9597, 10.270, 123},
+    {"sphere-32", "phong", 0.9996, 0.094, 1},
+    {"sphere-40", "flat", 0.9360, 16.317, 194},
+    {"sphere-40", "gouraud", 0.9491, 12.982, 65},
+    {"sphere-40", "phong", 0.9997, 0.076, 1},
+    {"sphere-512", "flat", 0.9853, 3.741, 51},
+    {"sphere-512", "gouraud", 0.9950, 1.285, 25},
+    {"sphere-512", "phong", 0.9997, 0.084, 1},
+    {"dodecahedron-30", "flat", 0.9295, 17.980, 183},
+    {"dodecahedron-30", "gouraud", 0.9469, 13.553, 135},
+    {"dodecahedron-30", "phong", 0.9997, 0.088, 1},
+    {"triangle", "flat", 0.7179, 71.929, 194},
+    {"triangle", "gouraud", 0.7694, 58.794, 190},
+    {"triangle", "phong", 1.0000, 0.001, 1},
+    {"teapot", "flat", 0.9856, 3.664, 138},
+    {"teapot", "gouraud", 0.9951, 1.249, 99},
+    // Max 37: two pixels of the lid rim, where the lid and the body surfaces of the classic
+    // patch data coincide and the depth order is a tie (see PhongMatchesReference below).
+    {"teapot", "phong", 0.9998, 0.039, 37},
+};
+
+struct Rendered {
+  Comparison phong;
+  DeviceFrame frame;
+  ReferenceFrame reference;
+};
+
+Rendered render(const std::string& scene_name, const std::string& method) {
+  Scene scene = load_scene(std::string(TP_SCENES_DIR) + "/" + scene_name + ".json");
+  scene.method = method;
+  DeviceRenderer device(scene.width, scene.height);
+  device.set_scene(scene);
+  Rendered r{{}, device.render(0.0), device.render_reference(0.0)};
+  r.phong = compare(r.reference.image(), r.reference.covered, r.frame.image(), r.frame.covered);
+  return r;
+}
+
+class SceneAccuracy : public ::testing::TestWithParam<Measured> {};
+
+TEST_P(SceneAccuracy, WithinMeasuredBounds) {
+  const Measured& m = GetParam();
+  const Rendered r = render(m.scene, m.method);
+  EXPECT_GE(r.phong.color_correctness, m.color_correctness - 0.001);
+  EXPECT_LE(r.phong.mean_abs, m.mean_abs * 1.05 + 0.05);
+  EXPECT_LE(r.phong.max_abs, m.max_abs + 2);
+  // Nearly the same coverage as the reference: both snap to 1/16 pixel and use the top-left rule,
+  // but the device transforms vertices in Q15.16 (about 0.003 pixel of error at 512x512), so a
+  // vertex within that distance of a snapping tie can land on the other 1/16 step. Measured:
+  // 4 silhouette pixels on sphere-512, 1 on the teapot (its lid-rim depth tie), 0 elsewhere.
+  EXPECT_LE(r.phong.only_reference + r.phong.only_evaluated, 8);
+  EXPECT_GT(r.phong.covered_both, 10000);
+}
+
+INSTANTIATE_TEST_SUITE_P(PaperScenes, SceneAccuracy, ::testing::ValuesIn(kMeasured),
+                         [](const auto& info) {
+                           std::string n = std::string(info.param.scene) + "_" + info.param.method;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+// Issue requirement: Gouraud and flat are worse than exact Phong on the 32-triangle sphere.
+TEST(SceneAccuracy, PhongBeatsGouraudAndFlatOnSphere32) {
+  const double phong = render("sphere-32", "phong").phong.color_correctness;
+  EXPECT_GT(phong, render("sphere-32", "gouraud").phong.color_correctness + 0.02);
+  EXPECT_GT(phong, render("sphere-32", "flat").phong.color_correctness + 0.02);
+}
+
+// Issue requirement: exact fixed-point Phong within 1 level mean and 3 levels max of the double
+// reference. Measured: max 1 level on every scene but the teapot, where exactly two pixels
+// (356,202) and (362,201) exceed 3 levels: the lid and the body coincide there and the z-test
+// resolves the tie differently in fixed point and in double (both answers are right).
+TEST(SceneAccuracy, PhongMatchesReference) {
+  for (const char* scene : {"sphere-32", "sphere-40", "sphere-512", "dodecahedron-30", "triangle",
+                            "teapot"}) {
+    SCOPED_TRACE(scene);
+    const Rendered r = render(scene, "phong");
+    EXPECT_LE(r.phong.mean_abs, 1.0);
+    long long above3 = 0;
+    int max_other = 0;
+    const Image8 ref = r.reference.image(), dev = r.frame.image();
+    for (int y = 0; y < ref.height; ++y)
+      for (int x = 0; x < ref.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(ref.width) +
+                              static_cast<std::size_t>(x);
+        if (!r.reference.covered[i] || !r.frame.covered[i]) continue;
+        int d = 0;
+        for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(ref.at(x, y)[c] - dev.at(x, y)[c]));
+        if (d > 3) ++above3;
+        else max_other = std::max(max_other, d);
+      }
+    EXPECT_LE(max_other, 3);
+    EXPECT_LE(above3, std::string(scene) == "teapot" ? 2 : 0);
+  }
+}
+
+}  // namespace
+}  // namespace tp::host
