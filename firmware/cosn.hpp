@@ -83,8 +83,8 @@ struct ClosedForm {
   std::int64_t scale_q29;          // α or β in Q2.29
   std::int64_t p1, p0, q1, q0;     // rational correction, Q16
 };
-inline constexpr ClosedForm kClosedA{404360434, 250750, 146516, 232811, -42871};
-inline constexpr ClosedForm kClosedB{1606548623, 98534, -51456, 119315, 15997};
+inline constexpr ClosedForm kClosedA{404360434, 261676, 148572, 241773, -41575};
+inline constexpr ClosedForm kClosedB{1606548623, 98254, -50462, 119544, 15635};
 
 namespace detail {
 // scale · (n²+p1 n+p0)/((n²+q1 n+q0) √n), in Q2.29. Bounds for 1 <= n <= 10^4: the Q16

@@ -38,7 +38,7 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
 
 // Integer division rounding toward +infinity / -infinity, for d > 0.
 constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? (n + d) / d : -((-n) / d);
+  return n >= 0 ? (n + d - 1) / d : -((-n) / d);
 }
 constexpr std::int64_t floor_div(std::int64_t n, std::int64_t d) {
   return n >= 0 ? n / d : -((-n + d - 1) / d);

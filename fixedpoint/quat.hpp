@@ -87,9 +87,8 @@ constexpr RsqrtResult rsqrt128(U128 p, int frac) {
   return rsqrt_core(u, frac - k);
 }
 
-// num / sqrt(p) with p's rsqrt r, rounded once into To: raw = num * mantissa * 2^(FT-62-exp2)
-// when num is in units 2^-num_frac and p in the square of those units... callers pass the
-// total shift.
+// num * r.mantissa / 2^sh (r an rsqrt_core result), rounded once into To; the caller folds
+// the units of num, r.exp2 and To's fractional bits into sh.
 template <QType To>
 constexpr To scale_by_rsqrt(wide_t num, RsqrtResult r, int sh) {
   return round_mag128<To>(num < 0, mul_u64(magnitude(num), r.mantissa), sh);
@@ -104,13 +103,17 @@ constexpr wide_t abs_wide(wide_t v) { return v < 0 ? -v : v; }  // callers: |v| 
 
 // Antipodal threshold: rotation_between takes the 180-degree path when |p| < 2^(kLog2 - F),
 // p = (|s|^2/2, from x to) (see rotation_between), F the inputs' fractional bits. Below it the
-// input rounding (| |from| - |to| |^2 / 2 <= 1.5 * 2^-2F enters w) outweighs the rotation
-// itself; the crossover of the two error curves was measured (test_quat.cpp,
-// QuatAccuracy.AntipodalThresholdCrossover).
-inline constexpr int kAntipodalLog2 = 1;
+// input rounding (| |from| - |to| |^2 / 2 <= 1.5 * 2^-2F enters w, and from x to may vanish
+// for rounded vectors that are exactly anti-parallel) outweighs the rotation itself. kLog2 = 0,
+// i.e. |p| below one input LSB, was chosen by measurement: sweeping kLog2 in -2..3 over pairs
+// at angle π - 2^-k (k = 26..34) and exactly opposite rounded pairs, the worst error of
+// rotate(q, from) against `to` is smallest at 0 (tests/fixedpoint/test_quat.cpp,
+// QuatAntipodal.ThresholdIsTheMeasuredBest; figures in docs/ACCURACY.md).
+inline constexpr int kAntipodalLog2 = 0;
 
-// true iff p < 2^e (0 <= e < 128).
+// true iff p < 2^e (e < 128; false for e < 0).
 constexpr bool below_pow2(U128 p, int e) {
+  if (e < 0) return false;
   if (e >= 64) return p.hi < (u64{1} << (e - 64));
   return p.hi == 0 && p.lo < (u64{1} << e);
 }
@@ -146,14 +149,17 @@ constexpr Quat<To> half_turn_perpendicular(Vec3<T> f) {
 //
 // Degenerate inputs (documented, tested):
 //  - from or to the zero vector: identity.
-//  - antipodal (|p| < 2^(kAntipodalLog2 - F), i.e. from = -to up to input rounding): 180
+//  - antipodal (|p| < 2^(kAntipodalLog2 - F) = one input LSB, i.e. from = -to up to the
+//    input rounding; for unit inputs |p| = 2 cos(θ/2) ~ π - θ, so θ > π - 2^-F): 180
 //    degrees about normalize(from x e), e the basis axis least aligned with `from`.
 // Components beyond [-1, 1] (non-unit inputs) are first halved, rounded, so that no
 // intermediate can overflow; the result is then the rotation between the directions, still
 // rounded once.
+namespace detail {
+// rotation_between with the antipodal threshold as a parameter (the tests sweep it to measure
+// the crossover; everything else calls rotation_between).
 template <QType To, QType T>
-constexpr Quat<To> rotation_between(Vec3<T> from, Vec3<T> to) {
-  using detail::wide_t;
+constexpr Quat<To> rotation_between_with(Vec3<T> from, Vec3<T> to, int antipodal_log2) {
   static_assert(T::int_bits + T::frac_bits <= 31 && T::frac_bits >= 1,
                 "inputs up to 32-bit storage");
   static_assert(To::frac_bits <= 62, "output format");
@@ -183,12 +189,12 @@ constexpr Quat<To> rotation_between(Vec3<T> from, Vec3<T> to) {
   }
   // Vector part from x to, doubled into the same units 2^-(2F+1) as w_num.
   const wide_t v[3] = {2 * (f[1] * t[2] - f[2] * t[1]), 2 * (f[2] * t[0] - f[0] * t[2]),
-                       2 * (f[0] * t[1] - f[1] * t[0])};  // each |.| <= 2 * 2^61
+                       2 * (f[0] * t[1] - f[1] * t[0])};  // each |.| <= 2 * 2^61 = 2^62
   // |p|^2 in units 2^-(4F+2): w_num^2 + |v|^2 <= 9 * 2^124 + 3 * 2^124 < 2^128.
   detail::U128 p2 = detail::mul_u64(w_num, w_num);
   for (int i = 0; i < 3; ++i) p2 = detail::add128(p2, detail::mul_s64(v[i], v[i]));
   // |p| < 2^(k - F)  <=>  p2 < 2^(2k - 2F + 4F + 2) = 2^(2k + 2F + 2).
-  if (detail::below_pow2(p2, 2 * detail::kAntipodalLog2 + 2 * frac + 2))
+  if (detail::below_pow2(p2, 2 * antipodal_log2 + 2 * frac + 2))
     return detail::half_turn_perpendicular<To>(from);
   // Component = num / sqrt(p2) (same units cancel): raw = num * mantissa * 2^(FT - 62 - exp2).
   const detail::RsqrtResult r = detail::rsqrt128(p2, 0);
@@ -196,6 +202,12 @@ constexpr Quat<To> rotation_between(Vec3<T> from, Vec3<T> to) {
   return {detail::round_mag128<To>(false, detail::mul_u64(w_num, r.mantissa), sh),
           detail::scale_by_rsqrt<To>(v[0], r, sh), detail::scale_by_rsqrt<To>(v[1], r, sh),
           detail::scale_by_rsqrt<To>(v[2], r, sh)};
+}
+}  // namespace detail
+
+template <QType To, QType T>
+constexpr Quat<To> rotation_between(Vec3<T> from, Vec3<T> to) {
+  return detail::rotation_between_with<To>(from, to, detail::kAntipodalLog2);
 }
 
 // v + 2w (u x v) + 2 u x (u x v), u = (q.x, q.y, q.z): the rotation of v by unit q. Exact in
@@ -241,7 +253,7 @@ constexpr Quat<To> multiply(Quat<A> a, Quat<B> b) {
   const auto sum4 = [](U128 p0, U128 p1, U128 p2, U128 p3) {
     return detail::add128(detail::add128(p0, p1), detail::add128(p2, p3));
   };
-  const auto neg = detail::neg128;
+  constexpr auto neg = [](U128 v) { return detail::neg128(v); };
   constexpr int sh = A::frac_bits + B::frac_bits - To::frac_bits;
   return {
       detail::round128<To>(sum4(mul_s64(aw, bw), neg(mul_s64(ax, bx)), neg(mul_s64(ay, by)),

@@ -144,6 +144,7 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   using I2 = glm::i64vec2;
   const auto cross = [](I2 a, I2 b) { return a.x * b.y - a.y * b.x; };
+  std::uint64_t guard_clipped = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const I2 c{static_cast<long>(16 * W * (0.2 + 0.6 * u(rng))), static_cast<long>(16 * H * (0.2 + 0.6 * u(rng)))};
     std::vector<double> angles;
@@ -206,7 +207,9 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
       }
     EXPECT_EQ(bad, 0) << "trial " << trial;
     EXPECT_GT(inside, 0);
+    guard_clipped += d.counters().triangles_clipped;
   }
+  EXPECT_GT(guard_clipped, 10u);  // the far rims did exercise guard-band clipping
 }
 
 // A ground plane from behind the eye (w < 0) to far ahead: the visible part must render.
