@@ -9,7 +9,8 @@
 //   usage: fit_cosn_closed_form [rounds] [refine]   (about 5 s per round on one core)
 // From scratch, 6 rounds reach objective 0.9964 (worst 1.494 % for n >= 3). The coefficients
 // stored in cosn.hpp came from a longer run of the same objective through an intermediate
-// [1/1] form and one round of "refine" (objective 0.9796: 2.449 % at n = 1, 1.812 % at n = 2, 1.469 % for n >= 3); "refine" restarts from them.
+// [1/1] form and one round of "refine" (objective 0.9796: 2.449 % at n = 1, 1.812 % at
+// n = 2, 1.469 % for n >= 3); "refine" restarts from them.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -75,10 +75,10 @@ constexpr CosnParams paper_params(int n_in) {
 // (α, β) the minimax fit of the Gaussian, α = 0.75318, β = 2.99243 (gen_cosn_fits --print at
 // n = 10,000, times 100). A [2/2] rational correction in n bends it to the small-n optimum:
 //   a = α (n² + p1 n + p0) / ((n² + q1 n + q0) √n), the same form for b.
-// The eight coefficients were fitted (Nelder-Mead, minimising max over n of the max error
-// relative to the 1.5 % target, 2.5 % at n = 1) and are stored in Q16; see docs/ACCURACY.md.
-// Max error: <= 1.484 % for 3 <= n <= 10,000, 1.830 % at n = 2 (the minimax optimum there is
-// 1.765 %, so 1.5 % is out of reach of this f), 2.458 % at n = 1.
+// The eight coefficients were fitted by bench/fit_cosn_closed_form (Nelder-Mead, minimising
+// max over n of the max error relative to the 1.5 % target, 2.5 % at n = 1) and are stored
+// in Q16; see docs/ACCURACY.md. Max error: <= 1.469 % for 3 <= n <= 10,000, 1.812 % at n = 2
+// (the minimax optimum there is 1.765 %, so 1.5 % is out of reach of this f), 2.449 % at n = 1.
 struct ClosedForm {
   std::int64_t scale_q29;          // α or β in Q2.29
   std::int64_t p1, p0, q1, q0;     // rational correction, Q16

@@ -20,11 +20,12 @@
 // Preconditions and overflow bounds (exercised in tests/cosn under UBSan):
 //   1 <= length <= 4096; |θ0| <= π and |θ0 + (length−1)·dθ| <= π; |dθ| <= 1 radian per
 //   pixel (make_segments saturates dθ to ±1: a span turning faster than that has no smooth
-//   shading to preserve); 0 <= scale <= 1 (Q1.30); CosnCoeffs valid (0 < a < b <= π,
+//   shading to preserve); 0 <= scale <= 1 (Q1.30); CosnCoeffs valid (0 < a < b < 4,
 //   k = 1/(ab), 1/(b(b−a)) <= 2^14, true for every n <= 10,000 of all three (a, b) sources).
-//   Bounds: k·|e| <= 1/b <= 2^5.1 at a segment start (|e| <= a for the inner piece, b − a
-//   for the outer ones), so |B| = 2·s·k·|e|·|dθ| < 2^6.1; |A| = s·k·dθ² <= 2^14; in Q.44:
-//   |v| <= 2^44, |d1| <= 2^58.1, |d2| <= 2^59. Inside advance(), t·|dθ| is at most the piece
+//   Bounds: k·|e| <= 1/b at a segment start (|e| <= a for the inner piece, b − a for the
+//   outer ones), and 1/b < 2^7 since b² > ab >= 2^-14 (2^5.1 for the n <= 10,000 sources), so
+//   |B| = 2·s·k·|e|·|dθ| < 2^8; |A| = s·k·dθ² <= 2^14; in Q.44: |v| <= 2^44,
+//   |d1| <= 2^58.1, |d2| <= 2^59. Inside advance(), t·|dθ| is at most the piece
 //   width plus one step, so t·|A| < 2^15.6 and A·t² <= 4 units: every partial product < 2^60.
 //   Sums: 8 worst-case terms fit int64; at a typical |dθ| <= 2^-6, |d2| <= 2^47, so thousands.
 #pragma once

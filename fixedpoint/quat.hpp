@@ -107,8 +107,8 @@ constexpr wide_t abs_wide(wide_t v) { return v < 0 ? -v : v; }  // callers: |v| 
 // for rounded vectors that are exactly anti-parallel) outweighs the rotation itself. kLog2 = 0,
 // i.e. |p| below one input LSB, was chosen by measurement: sweeping kLog2 in -2..3 over pairs
 // at angle π - 2^-k (k = 26..34) and exactly opposite rounded pairs, the worst error of
-// rotate(q, from) against `to` is smallest at 0 (tests/fixedpoint/test_quat.cpp,
-// QuatAntipodal.ThresholdIsTheMeasuredBest; figures in docs/ACCURACY.md).
+// rotate(q, from) against `to` is smallest at 0 (3.66 LSB; +1: 3.72, -1: 4.75, +2: 5.26;
+// tests/fixedpoint/test_quat.cpp, QuatAntipodal.ThresholdIsTheMeasuredBest).
 inline constexpr int kAntipodalLog2 = 0;
 
 // true iff p < 2^e (e < 128; false for e < 0).
@@ -136,26 +136,7 @@ constexpr Quat<To> half_turn_perpendicular(Vec3<T> f) {
   return {To::zero(), axis.x, axis.y, axis.z};
 }
 
-}  // namespace detail
 
-// Minimal rotation taking unit `from` onto unit `to` (Kuijk-Blake's R(N->O), eq. 4).
-//
-// Half-vector construction: with s = from + to and h = s/|s|, q = (from.h, from x h). Taken
-// literally with rounded inputs, from.h = (|from|^2 + from.to)/|s| carries (|from|^2 - |to|^2)/2
-// / |s| of input rounding, amplified without bound as |s| -> 0. So w is symmetrised to
-// s.s/2 / |s| = |s|/2 (exact for unit inputs, error (|from| - |to|)^2/2 ~ 2^-2F otherwise), and
-// the whole quaternion p = (|s|^2/2, from x to) is divided by its own exact length: q = p/|p|,
-// integer numerators, one 128-bit |p|^2, one rsqrt, one rounding per component.
-//
-// Degenerate inputs (documented, tested):
-//  - from or to the zero vector: identity.
-//  - antipodal (|p| < 2^(kAntipodalLog2 - F) = one input LSB, i.e. from = -to up to the
-//    input rounding; for unit inputs |p| = 2 cos(θ/2) ~ π - θ, so θ > π - 2^-F): 180
-//    degrees about normalize(from x e), e the basis axis least aligned with `from`.
-// Components beyond [-1, 1] (non-unit inputs) are first halved, rounded, so that no
-// intermediate can overflow; the result is then the rotation between the directions, still
-// rounded once.
-namespace detail {
 // rotation_between with the antipodal threshold as a parameter (the tests sweep it to measure
 // the crossover; everything else calls rotation_between).
 template <QType To, QType T>
@@ -205,6 +186,23 @@ constexpr Quat<To> rotation_between_with(Vec3<T> from, Vec3<T> to, int antipodal
 }
 }  // namespace detail
 
+// Minimal rotation taking unit `from` onto unit `to` (Kuijk-Blake's R(N->O), eq. 4).
+//
+// Half-vector construction: with s = from + to and h = s/|s|, q = (from.h, from x h). Taken
+// literally with rounded inputs, from.h = (|from|^2 + from.to)/|s| carries (|from|^2 - |to|^2)/2
+// / |s| of input rounding, amplified without bound as |s| -> 0. So w is symmetrised to
+// s.s/2 / |s| = |s|/2 (exact for unit inputs, error (|from| - |to|)^2/2 ~ 2^-2F otherwise), and
+// the whole quaternion p = (|s|^2/2, from x to) is divided by its own exact length: q = p/|p|,
+// integer numerators, one 128-bit |p|^2, one rsqrt, one rounding per component.
+//
+// Degenerate inputs (documented, tested):
+//  - from or to the zero vector: identity.
+//  - antipodal (|p| < 2^(kAntipodalLog2 - F) = one input LSB, i.e. from = -to up to the
+//    input rounding; for unit inputs |p| = 2 cos(θ/2) ~ π - θ, so θ > π - 2^-F): 180
+//    degrees about normalize(from x e), e the basis axis least aligned with `from`.
+// Non-unit inputs are outside the contract: components beyond [-1, 1] are first halved,
+// rounded, so that no intermediate can overflow, and the result is a unit quaternion; it is
+// the rotation between the directions only as far as |from| = |to| (w assumes it).
 template <QType To, QType T>
 constexpr Quat<To> rotation_between(Vec3<T> from, Vec3<T> to) {
   return detail::rotation_between_with<To>(from, to, detail::kAntipodalLog2);

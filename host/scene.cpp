@@ -255,6 +255,65 @@ Scene read_scene(const Reader& r, const json& j) {
   return s;
 }
 
+// JSON allows a key twice in one object and nlohmann keeps the last value: in a scene file
+// that is almost always a copy-paste slip whose first value silently stops mattering, so it is
+// an error. The parser callback sees every key; a stack of open containers gives its path.
+// The line is that of the key's second occurrence after the object's start (a text search,
+// which is exact unless the same key text appears in a string value in between).
+void reject_duplicate_keys(std::string_view text, const std::string& file) {
+  struct Frame {
+    bool object = true;
+    std::set<std::string> keys;
+    std::string key;   // current key (objects)
+    long index = -1;   // current element (arrays)
+  };
+  std::vector<Frame> stack;
+  const auto path = [&stack](std::size_t upto) {
+    std::string p;
+    for (std::size_t i = 0; i < upto; ++i)
+      p += "/" + (stack[i].object ? stack[i].key : std::to_string(stack[i].index));
+    return p;
+  };
+  const auto enter_element = [&stack] {
+    if (!stack.empty() && !stack.back().object) ++stack.back().index;
+  };
+  json::parser_callback_t cb = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        enter_element();
+        stack.push_back({event == json::parse_event_t::object_start, {}, {}, -1});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        Frame& top = stack.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second) {
+          const std::string parent = path(stack.size() - 1);
+          const std::string needle = "\"" + top.key + "\"";
+          std::size_t at = 0;
+          if (const int pl = line_of_pointer(text, parent); pl > 0)
+            for (int l = 1; l < pl; ++l) at = text.find('\n', at) + 1;
+          at = text.find(needle, at);
+          if (at != std::string_view::npos) at = text.find(needle, at + 1);
+          const int line = at == std::string_view::npos ? 0 : line_of_offset(text, at);
+          throw SceneError(file, line, parent + "/" + top.key,
+                           "duplicate key \"" + top.key + "\" (JSON would keep only the last one)");
+        }
+        break;
+      }
+      case json::parse_event_t::value:
+        enter_element();
+        break;
+    }
+    return true;
+  };
+  (void)json::parse(text.begin(), text.end(), cb);
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& file,
@@ -278,6 +337,7 @@ Scene parse_scene(std::string_view text, const std::string& file,
     }
     throw SceneError(file, line, "", "malformed JSON: " + msg);
   }
+  reject_duplicate_keys(text, file);
   const Reader r{file, text, base_dir};
   return read_scene(r, j);
 }

@@ -14,7 +14,7 @@
 namespace tp::server {
 
 inline constexpr std::size_t kControlMessageLimit = 4096;  // bytes; larger → error reply
-inline constexpr std::size_t kMaxLights = 8;
+inline constexpr std::size_t kMaxLights = 16;  // the device's light slots (host::kMaxLights)
 inline constexpr int kMinSize = 16, kMaxSize = 2048;
 
 // Flags the render loop owns (not part of the scene).

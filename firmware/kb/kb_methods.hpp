@@ -31,7 +31,7 @@ enum class OChoice { kPaper, kTriangleMean };
 class KbOneVectorMethod final : public ShadingMethod {
  public:
   // skipping = false evaluates every term on every span (the image must not change: tested).
-  explicit KbOneVectorMethod(bool skipping, OChoice o = OChoice::kTriangleMean)
+  explicit KbOneVectorMethod(bool skipping, OChoice o = OChoice::kPaper)
       : skipping_(skipping), o_choice_(o) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;

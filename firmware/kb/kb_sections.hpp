@@ -5,15 +5,15 @@
 // forward-differenced quadratic per colour channel: two additions per channel per pixel plus
 // one comparison per merged segment, whatever the number of lights.
 //
-// Exactness: each term's pieces come from cosn::make_segments (Q.40 states, exact integer
+// Exactness: each term's pieces come from cosn::make_segments (Q.S states, exact integer
 // polynomials per piece). At a term's break point the running sum receives
 // cosn::jump(prev, next) = next.state − prev.state advanced to next.x, so at every pixel the
 // running state equals the sum of the terms' direct evaluations, bit for bit (tested over
 // spans of 4,096 pixels in tests/kb/test_kb_sections.cpp).
 //
-// Units: a channel's value v (Q.40) is 255·I/4096, so the output level round(255·I) is
-// round(v / 2^28), a shift: the per-term scale Il_c·k·O_c·f(s)·255/4096 <= 16·255/4096 < 1
-// fits cosn's q1_30 scale. Sum bound: 16 lights × 2 terms × 2^40 < 2^45 for the value; the
+// Units: a channel's value v (cosn's state format Q.S, S = cosn::kStateFrac = 44) is
+// 255·I/4096, so the output level round(255·I) is round(v / 2^(S − 12)), a shift: the per-term scale Il_c·k·O_c·f(s)·255/4096 <= 16·255/4096 < 1
+// fits cosn's q1_30 scale. Sum bound: 16 lights × 2 terms × 2^S = 2^49 for the value; the
 // differences are bounded per term in cosn_fd.hpp and checked here (kSafeBound) — a span whose
 // terms could overflow the sum is evaluated pixel by pixel from the direct evaluations instead.
 //
@@ -31,11 +31,11 @@
 namespace tp::fw::kb {
 
 inline constexpr int kMaxTerms = 2 * static_cast<int>(kMaxLights);
-inline constexpr int kLevelShift = cosn::kStateFrac - 12;  // v = 255·I / 2^12 in Q.40
+inline constexpr int kLevelShift = cosn::kStateFrac - 12;  // v = 255·I / 2^12 in Q.S
 // Per-term magnitude budget: 32 terms of at most 2^57 each stay below 2^62.
 inline constexpr std::int64_t kSafeBound = std::int64_t{1} << 57;
 
-// 255·I in Q.40 units of 1/4096 -> 8-bit level: clamp(round(v / 2^28), 0, 255).
+// 255·I in Q.S units of 1/4096 -> 8-bit level: clamp(round(v / 2^(S − 12)), 0, 255).
 constexpr std::uint8_t level_of(std::int64_t v) {
   if (v <= 0) return 0;
   const std::int64_t l = (v + (std::int64_t{1} << (kLevelShift - 1))) >> kLevelShift;
@@ -62,7 +62,11 @@ struct TermSegments {
 constexpr int make_one_channel(const cosn::CosnCoeffs& coeffs, fx::angle_t theta0,
                                fx::angle_t dtheta, cosn::scale_t scale, int length,
                                cosn::CosnSegment* out) {
-  const std::int64_t t0 = theta0.raw(), dt = length > 1 ? dtheta.raw() : 0;
+  const std::int64_t t0 = theta0.raw();
+  // cosn saturates dθ to ±1 rad per pixel; use the same step here.
+  const std::int64_t dt_in = length > 1 ? dtheta.raw() : 0;
+  const std::int64_t dt = dt_in > cosn::kMaxDThetaRaw ? cosn::kMaxDThetaRaw
+                          : (dt_in < -cosn::kMaxDThetaRaw ? -cosn::kMaxDThetaRaw : dt_in);
   const std::int64_t end = t0 + dt * (length - 1);
   if (end <= kPiRaw && end >= -kPiRaw) return cosn::make_segments(coeffs, theta0, dtheta, scale, length, out);
   // First pixel past ±π.
@@ -98,7 +102,7 @@ class SpanSections {
     bool direct = false;              // fell back to direct evaluation (overflow guard)
   };
 
-  // A span of `length` pixels (1..4096) whose constant part is ambient[c] (Q.40, 255·I/4096).
+  // A span of `length` pixels (1..4096) whose constant part is ambient[c] (Q.S, 255·I/4096).
   constexpr void begin(int length, const std::int64_t ambient[3]) {
     length_ = length;
     count_ = 0;
@@ -135,7 +139,7 @@ class SpanSections {
     return run(LevelSink{out}, skip_zero_segments);
   }
 
-  // The running Q.40 values per pixel (tests: bit-exactness of the forward differencing).
+  // The running Q.S values per pixel (tests: bit-exactness of the forward differencing).
   // Spans refused by the overflow guard are evaluated directly (Stats::direct).
   constexpr Stats evaluate_raw(std::int64_t* r, std::int64_t* g, std::int64_t* b) {
     if (!safe_) {
@@ -145,7 +149,7 @@ class SpanSections {
     return run(RawSink{r, g, b}, false);
   }
 
-  // Direct evaluation of the summed polynomial of channel c at pixel x (Q.40): the ambient
+  // Direct evaluation of the summed polynomial of channel c at pixel x (Q.S): the ambient
   // plus every term's own polynomial at x (tests; the overflow fallback).
   constexpr std::int64_t direct_raw(int x, int c) const {
     std::int64_t v = ambient_[c];

@@ -140,6 +140,21 @@ TEST(CosnFd, CrossingSpanHasFiveSegments) {
   EXPECT_EQ(segments_of(down).count, 5);
 }
 
+// A step above one radian per pixel is saturated to it (the documented overflow guard).
+TEST(CosnFd, StepIsSaturatedToOneRadian) {
+  const CosnCoeffs k = make_coeffs(closed_params(1));
+  CosnSegment fast[kMaxSegments], clamped[kMaxSegments];
+  const auto t0 = angle_t::from_raw(-(3 << 28));
+  const auto s = scale_t::from_raw(1 << 30);
+  const int nf = make_segments(k, t0, angle_t::from_raw(3 << 28), s, 3, fast);
+  const int nc = make_segments(k, t0, angle_t::from_raw(1 << 29), s, 3, clamped);
+  ASSERT_EQ(nf, nc);
+  for (int i = 0; i < nf; ++i) {
+    EXPECT_EQ(fast[i].x, clamped[i].x);
+    EXPECT_EQ(fast[i].st, clamped[i].st);
+  }
+}
+
 // Several terms summed into one running state, switching polynomials by jump() at every
 // break point of every term: equals the sum of the direct evaluations, bit for bit.
 TEST(CosnFd, SummedTermsViaJumpsAreExact) {
@@ -199,7 +214,7 @@ TEST(CosnFd, ErrorAgainstDoubleF) {
               worst_cos);
   // Measured by this test's printout (build/h2/tests/cosn/cosn_fd_test
   // --gtest_filter=*Error*), 2026-11-22: 0.5231 LSB against f = the output rounding (0.5) plus
-  // the Q.44 coefficient rounding grown over t² (bound 1/32 LSB); 1611.3 LSB = 2.46 % against
+  // the Q.44 coefficient rounding grown over t² (bound 1/32 LSB); 1605.3 LSB = 2.45 % against
   // cos^n (n = 1, closed form). Pinned with margin: 0.54 LSB, 2.5 % of the peak.
   EXPECT_LE(worst_f, 0.54);
   EXPECT_LE(worst_cos, 0.025 * 65536);

@@ -173,7 +173,8 @@ inline ErrStats measure_antipodal_sweep(int antipodal_log2, std::size_t n) {
                 ld_unit(to_ldv(t)));
   };
   for (int k = 26; k <= 34; ++k)
-    for (const auto& p : near_antipodal_pairs(n, std::ldexp(1.0L, -k), 900u + static_cast<unsigned>(k)))
+    for (const auto& p :
+         near_antipodal_pairs(n, std::ldexp(1.0L, -k), 900u + static_cast<unsigned>(k)))
       one(p.from, p.to);
   for (const auto& a : random_units(n, 4242u)) one(round30(a), neg_sat(round30(a)));
   return s;
@@ -191,9 +192,10 @@ inline std::vector<Case> quat_cases() {
                [] { return measure_maps_onto(random_pairs(100000)); }});
   c.push_back({"rotate(rotation_between(a, b), a) vs b", "angle π - 1e-6, 10^4 pairs",
                [] { return measure_maps_onto(near_antipodal_pairs(10000, 1e-6L, 5u)); }});
-  c.push_back({"rotate(rotation_between(a, b), a) vs b", "angle π - 2^-k, k = 26..34, + exactly opposite, 10^4 each",
+  c.push_back({"rotate(rotation_between(a, b), a) vs b",
+               "angle π - 2^-k (k = 26..34) and exactly opposite, 10^4 each",
                [] { return measure_antipodal_sweep(detail::kAntipodalLog2, 10000); }});
-  c.push_back({"|rotate(q, L)| - |L|", "10^5 random q, L",
+  c.push_back({"norm(rotate(q, L)) - norm(L)", "10^5 random q, L",
                [] {
                  ErrStats len, ang;
                  measure_preservation(random_pairs(100000), len, ang);

@@ -61,6 +61,8 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"missing_mesh.json", 5, "/meshes/0/obj", "mesh file not found"},
         Expected{"bad_obj.json", 6, "/meshes/1/obj", "missing vertex"},
         Expected{"missing_key.json", 1, "", "missing key \"camera\""},
+        // A repeated key would silently drop its first value; the line is the repeat's.
+        Expected{"duplicate_key.json", 7, "/lights/1/position", "duplicate key \"position\""},
         Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions",
                  "out of range"}));
 

@@ -3,6 +3,7 @@
 // tinyphong-server, for T seconds; reports frames/s and bytes per frame per client, the server's
 // RSS (given its pid), and what zlib would save on the frames (lossless compression check).
 //   server_loadgen --port P [--clients N] [--stalled K] [--seconds T] [--pid PID]
+#include <utility>  // before Boost 1.74 asio (awaitable.hpp uses std::exchange)
 #include <zlib.h>
 
 #include <atomic>

@@ -1,0 +1,109 @@
+// Depth test and clear: nearer wins in either drawing order, equal depth keeps the first
+// (strictly-less test), the depth word mapping, and that a depth-tested sphere with culling off
+// gives the same image as culling on.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "helpers.hpp"
+
+namespace tp::fw::test {
+namespace {
+
+Mesh two_quads(double z_first, double z_second) {
+  Mesh m;
+  for (double z : {z_first, z_second})
+    for (glm::dvec3 p : {glm::dvec3(-0.8, -0.8, z), glm::dvec3(0.8, -0.8, z), glm::dvec3(0.8, 0.8, z),
+                         glm::dvec3(-0.8, 0.8, z)}) {
+      m.positions.push_back(p);
+      m.normals.push_back({0, 0, 1});
+    }
+  for (std::uint32_t b : {0u, 4u}) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+  return m;
+}
+
+// Draws the first quad in colour A (material colour), the second in colour B.
+Rgb8 centre_after(double z_first, double z_second) {
+  Rig rig(32, 32);
+  auto& d = rig.dev;
+  const Mesh m = two_quads(z_first, z_second);
+  EXPECT_EQ(d.set_method(Method::kFlat), Error::kOk);
+  LightCmd l;
+  l.index = 0;
+  l.type = LightType::kDirectional;
+  l.color[0] = l.color[1] = l.color[2] = q16(1);
+  l.direction = Vec3u{q30(0), q30(0), q30(1)};
+  EXPECT_EQ(d.set_light(l), Error::kOk);
+  EXPECT_EQ(d.clear(Rgb8{0, 0, 0}), Error::kOk);
+  EXPECT_EQ(rig.load(m), Error::kOk);
+  MaterialCmd a;
+  a.color[0] = q30(1);
+  a.color[1] = a.color[2] = q30(0);
+  a.kd = q30(1);
+  EXPECT_EQ(d.set_material(a), Error::kOk);
+  EXPECT_EQ(d.draw(DrawCmd{0, 6}), Error::kOk);
+  MaterialCmd b = a;
+  b.color[0] = q30(0);
+  b.color[2] = q30(1);
+  EXPECT_EQ(d.set_material(b), Error::kOk);
+  EXPECT_EQ(d.draw(DrawCmd{6, 6}), Error::kOk);
+  return rig.pixel(16, 16);
+}
+
+TEST(Depth, NearerWinsInEitherOrder) {
+  // Identity projection: NDC z = model z, smaller is nearer.
+  EXPECT_EQ(centre_after(-0.5, 0.5).r, 255);  // first is nearer: stays red
+  EXPECT_EQ(centre_after(0.5, -0.5).b, 255);  // second is nearer: becomes blue
+  EXPECT_EQ(centre_after(0.25, 0.25).r, 255); // equal depth: strictly-less keeps the first
+}
+
+TEST(Depth, WordMappingAndClear) {
+  Rig rig(8, 8);
+  auto& d = rig.dev;
+  Mesh m = two_quads(0.0, 0.0);
+  m.indices.resize(6);
+  ASSERT_EQ(d.clear(Rgb8{10, 20, 30}), Error::kOk);
+  EXPECT_EQ(d.depth_buffer()[0], 0xffffffffu);
+  EXPECT_EQ(rig.pixel(0, 0).g, 20);
+  ASSERT_EQ(rig.load(m), Error::kOk);
+  ASSERT_EQ(rig.draw_all(m), Error::kOk);
+  EXPECT_EQ(d.depth_buffer()[4 * 8 + 4], 1u << 31);  // NDC z = 0 -> 2^31
+  EXPECT_EQ(rig.count(4, 4), 1);
+  EXPECT_EQ(rig.pixel(0, 0).g, 20);  // outside the quad: the clear colour stays
+  ASSERT_EQ(d.clear(Rgb8{0, 0, 0}), Error::kOk);
+  EXPECT_EQ(rig.count(4, 4), 0);
+  EXPECT_EQ(d.counters().pixels_written, 0u);
+}
+
+TEST(Depth, DepthTestedSphereWithoutCullingEqualsCulled) {
+  const Mesh m = octasphere(3);
+  std::vector<std::uint8_t> images[2];
+  for (int cull = 0; cull < 2; ++cull) {
+    Rig rig(80, 64);
+    auto& d = rig.dev;
+    ASSERT_EQ(d.set_projection(to_mat4(glm::perspective(0.9, 80.0 / 64.0, 1.0, 10.0))), Error::kOk);
+    ASSERT_EQ(d.set_modelview(to_mat4(glm::translate(glm::dmat4(1), glm::dvec3(0.2, 0.1, -3.5)))), Error::kOk);
+    ASSERT_EQ(d.set_culling(cull == 1), Error::kOk);
+    ASSERT_EQ(d.set_method(Method::kGouraud), Error::kOk);
+    LightCmd l;
+    l.index = 0;
+    l.type = LightType::kPoint;
+    l.color[0] = l.color[1] = l.color[2] = q16(1);
+    l.position = Vec3q16{q16(2), q16(2), q16(0)};
+    ASSERT_EQ(d.set_light(l), Error::kOk);
+    ASSERT_EQ(d.clear(Rgb8{0, 0, 0}), Error::kOk);
+    ASSERT_EQ(rig.load(m), Error::kOk);
+    ASSERT_EQ(rig.draw_all(m), Error::kOk);
+    const FramebufferView fb = d.framebuffer();
+    images[cull].assign(fb.data, fb.data + fb.stride * fb.height);
+    if (cull == 0) {
+      EXPECT_EQ(d.counters().triangles_culled, 0u);
+    } else {
+      EXPECT_GT(d.counters().triangles_culled, 200u);
+    }
+  }
+  EXPECT_TRUE(images[0] == images[1]);
+}
+
+}  // namespace
+}  // namespace tp::fw::test
