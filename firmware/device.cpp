@@ -233,7 +233,8 @@ Error Device::set_light(const LightCmd& cmd) {
 Error Device::set_method(Method m) {
   // Only implemented methods; the reserved ids of types.hpp are refused until they exist.
   if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong &&
-      m != Method::kKuijkBlake && m != Method::kKuijkBlakeNoSkip)
+      m != Method::kKuijkBlake && m != Method::kKuijkBlakeNoSkip &&
+      m != Method::kKuijkBlakeDecomposition && m != Method::kKuijkBlakeExact)
     return fail(Error::kUnknownMethod);
   state_.method = m;
   return ok();
@@ -319,6 +320,8 @@ ShadingMethod& Device::method() {
     case Method::kPhong: return phong_;
     case Method::kKuijkBlake: return kb_one_vector_;
     case Method::kKuijkBlakeNoSkip: return kb_no_skip_;
+    case Method::kKuijkBlakeDecomposition: return kb_decomposition_;
+    case Method::kKuijkBlakeExact: return kb_exact_;
     default: return gouraud_;
   }
 }

@@ -150,6 +150,8 @@ class Device {
   PhongMethod phong_;
   kb::KbOneVectorMethod kb_one_vector_{true};
   kb::KbOneVectorMethod kb_no_skip_{false};
+  kb::KbDecompositionMethod kb_decomposition_;
+  kb::KbExactMethod kb_exact_;
 };
 
 }  // namespace tp::fw

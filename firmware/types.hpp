@@ -44,6 +44,9 @@ enum class Method : std::uint32_t {
   kBrown = 7,          // reserved
   kVlasic = 8,         // reserved
   kKuijkBlakeNoSkip = 9,  // the same with every skip disabled (verification: identical image)
+  // 10: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
+  kKuijkBlakeDecomposition = 11,  // Kuijk-Blake decomposition, eq. 2
+  kKuijkBlakeExact = 12,          // Kuijk-Blake exact angular interpolation, eq. 1
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

@@ -68,6 +68,10 @@ const std::vector<MethodName>& method_names() {
       {"phong", fw::Method::kPhong, "exact per-pixel Blinn-Phong in fixed point"},
       {"kb", fw::Method::kKuijkBlake, "Kuijk-Blake one-vector angular interpolation (eq. 4)"},
       {"kb-noskip", fw::Method::kKuijkBlakeNoSkip, "kb with every skip disabled (same image)"},
+      {"kb-decomposition", fw::Method::kKuijkBlakeDecomposition,
+       "Kuijk-Blake decomposition (eq. 2): product of two forward-differenced f"},
+      {"kb-exact", fw::Method::kKuijkBlakeExact,
+       "Kuijk-Blake exact angular interpolation (eq. 1), per-pixel CORDIC"},
   };
   return names;
 }

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   double max_fps = 60, deadline_s = 5;
   int width = 0, height = 0;
   app.add_option("--bind", opt.bind, "address to listen on")->capture_default_str();
+  app.add_option("--allow-host", opt.allow_hosts,
+                 "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
   app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")->capture_default_str();

@@ -38,6 +38,7 @@ struct Server::Impl {
     ctx.policy.port = listener->port();
     ctx.policy.names = {"127.0.0.1", "localhost", "[::1]"};
     if (!addr.is_unspecified()) ctx.policy.names.push_back(url_host(addr));
+    for (const auto& h : opt.allow_hosts) ctx.policy.names.push_back(h);
   }
 
   void tick_stats() {

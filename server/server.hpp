@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "server/frame_source.hpp"
 #include "server/render_loop.hpp"
@@ -12,6 +13,7 @@ namespace tp::server {
 
 struct ServerOptions {
   std::string bind = "127.0.0.1";
+  std::vector<std::string> allow_hosts;  // extra Host names accepted (e.g. a LAN name with --bind)
   unsigned short port = 8080;  // 0: pick a free port
   int io_threads = 1;
   double stats_hz = 4;

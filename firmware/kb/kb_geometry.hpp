@@ -52,10 +52,11 @@ inline constexpr angle_t kPi = angle_t::from_raw(1686629713);
 inline constexpr angle_t kHalfPi = angle_t::from_raw(843314857);
 inline constexpr std::int64_t kTwoPiRaw = 3373259426;  // round(2π · 2^29)
 
-// An angle (raw angle_t units, |v| < 3π) wrapped into [−π, π].
+// An angle in raw angle_t units (any value a sum of a few angles can take) wrapped into
+// [−π, π].
 constexpr std::int64_t wrap_pi(std::int64_t v) {
-  if (v > kPi.raw()) return v - kTwoPiRaw;
-  if (v < -kPi.raw()) return v + kTwoPiRaw;
+  while (v > kPi.raw()) v -= kTwoPiRaw;
+  while (v < -kPi.raw()) v += kTwoPiRaw;
   return v;
 }
 

@@ -196,19 +196,21 @@ class SpanSections {
   constexpr Stats run(const Sink& sink, bool skip_zero_segments) {
     Stats stats;
     sort_events();
+    const auto ev = [this](int k) -> const Event& { return events_[order_[k] & 0xffffu]; };
     cosn::QuadState acc[3];
     for (int c = 0; c < 3; ++c) acc[c] = {ambient_[c], 0, 0};
     int active = 0, i = 0, x = 0;
     while (x < length_) {
-      for (; i < count_ && events_[i].x <= x; ++i) {  // break points at x: change the sum
-        active += events_[i].active;
+      for (; i < count_ && ev(i).x <= x; ++i) {  // break points at x: change the sum
+        const Event& e = ev(i);
+        active += e.active;
         for (int c = 0; c < 3; ++c) {
-          acc[c].v += events_[i].d[c].v;
-          acc[c].d1 += events_[i].d[c].d1;
-          acc[c].d2 += events_[i].d[c].d2;
+          acc[c].v += e.d[c].v;
+          acc[c].d1 += e.d[c].d1;
+          acc[c].d2 += e.d[c].d2;
         }
       }
-      const int end = i < count_ && events_[i].x < length_ ? events_[i].x : length_;
+      const int end = i < count_ && ev(i).x < length_ ? ev(i).x : length_;
       ++stats.segments;
       if (active == 0 && skip_zero_segments) {
         // Every term is on a zero piece: the state is exactly (ambient, 0, 0).
@@ -240,16 +242,19 @@ class SpanSections {
     acc[2] = {b, db, ddb};
   }
 
-  // Insertion sort by x (stable: a term's events stay in order); at most 5 per term.
+  // Events in x order: an insertion sort of 32-bit keys (x << 16 | index; x < 4096, index <
+  // 320), stable, so that a term's events keep their order; the events themselves stay put.
   constexpr void sort_events() {
+    for (int i = 0; i < count_; ++i)
+      order_[i] = static_cast<std::uint32_t>(events_[i].x) << 16 | static_cast<std::uint32_t>(i);
     for (int i = 1; i < count_; ++i) {
-      const Event e = events_[i];
+      const std::uint32_t k = order_[i];
       int j = i - 1;
-      while (j >= 0 && events_[j].x > e.x) {
-        events_[j + 1] = events_[j];
+      while (j >= 0 && order_[j] > k) {
+        order_[j + 1] = order_[j];
         --j;
       }
-      events_[j + 1] = e;
+      order_[j + 1] = k;
     }
   }
 
@@ -257,6 +262,7 @@ class SpanSections {
   bool safe_ = true;
   std::int64_t ambient_[3] = {0, 0, 0};
   Event events_[kMaxTerms * kMaxTermSegments];
+  std::uint32_t order_[kMaxTerms * kMaxTermSegments] = {};
   TermSegments terms_[kMaxTerms];
 };
 

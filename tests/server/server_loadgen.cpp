@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   std::atomic<long long> frames{0}, bytes{0};
   std::atomic<long> rss_max{0};
   std::mutex sample_m;
-  std::string sample;
+  std::string sample, stats;
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   std::vector<std::thread> threads;
   for (int i = 0; i < clients; ++i) {
@@ -61,7 +61,13 @@ int main(int argc, char** argv) {
       while (Clock::now() < end) {
         Message m = c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
         if (!m.ok) break;
-        if (!m.binary) continue;
+        if (!m.binary) {
+          if (i == 0 && m.data.find("\"stats\"") != std::string::npos) {
+            std::lock_guard lk(sample_m);
+            stats = m.data;
+          }
+          continue;
+        }
         c.ack(m.data);
         ++frames;
         bytes += static_cast<long long>(m.data.size());
@@ -80,6 +86,11 @@ int main(int argc, char** argv) {
   const double per_client_fps = static_cast<double>(frames) / clients / seconds;
   std::printf("clients %d (+%d stalled), %.1f s: %.2f frames/s per client, %.0f bytes per frame\n", clients,
               stalled, seconds, per_client_fps, frames ? static_cast<double>(bytes) / static_cast<double>(frames) : 0.0);
+  if (!stats.empty()) {
+    auto j = nlohmann::json::parse(stats);
+    std::printf("server stats: render loop %.2f fps, device render %.2f ms/frame, %d clients\n",
+                j["fps"].get<double>(), j["render_ms"].get<double>(), j["clients"].get<int>());
+  }
   if (pid) std::printf("server RSS: %ld KiB before, %ld KiB max during\n", rss0, rss_max.load());
   if (sample.size() > tp::server::kHeaderBytes) {
     const auto* px = reinterpret_cast<const Bytef*>(sample.data() + tp::server::kHeaderBytes);
