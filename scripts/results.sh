@@ -39,7 +39,23 @@ Kuijk-Blake columns, its setup share and its speed targets.
 ## One light, all methods
 
 EOF
-  "$bin" --reps "$reps" --scenes "$base"
+  one=$(mktemp)
+  "$bin" --reps "$reps" --scenes "$base" | tee "$one"
+  cat <<EOF
+### Run time against error (one light, the six scenes above)
+
+Geometric mean of the time ratio to Gouraud; mean and worst colour correctness (Phong reference).
+
+| method | time / Gouraud (geometric mean) | colour correctness: mean | worst |
+|---|---|---|---|
+EOF
+  awk -F'|' '/^\| [a-z]/ && $2 !~ /method/ {
+      m = $2; gsub(/ /, "", m); cc = $3 + 0; t = $9 + 0
+      if (!(m in n)) order[++k] = m
+      n[m]++; lt[m] += log(t); sc[m] += cc; if (!(m in w) || cc < w[m]) w[m] = cc }
+    END { for (i = 1; i <= k; i++) { m = order[i]
+      printf "| %s | %.2f | %.4f | %.4f |\n", m, exp(lt[m] / n[m]), sc[m] / n[m], w[m] } }' "$one"
+  rm -f "$one"
   cat <<EOF
 
 ## 2, 4 and 8 lights
