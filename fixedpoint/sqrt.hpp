@@ -61,6 +61,29 @@ constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
   return r;
 }
 
+// The same for e = 0 (the common case: a Q2.60 square into Q1.30), by the shift-and-subtract
+// form of the digit-by-digit method (one comparison per root bit, no bit-pair extraction):
+// the identical root, round_up and over.
+constexpr RootResult isqrt_plain(u64 u, u64 limit) {
+  RootResult r;
+  if (u == 0) return r;
+  u64 op = u, res = 0, one = u64{1} << 62;  // the largest power of 4 <= u, then down
+  while (one > op) one >>= 2;
+  while (one != 0) {
+    if (op >= res + one) {
+      op -= res + one;
+      res = (res >> 1) + one;
+    } else {
+      res >>= 1;
+    }
+    one >>= 2;
+  }
+  r.root = res;
+  r.round_up = op > res;
+  r.over = res > limit;
+  return r;
+}
+
 // Seed for 1/sqrt(y), y in [1/4, 1) split into 48 intervals of width 1/64 by y's top bits:
 // 1/sqrt at each interval midpoint (33 + 2i) / 128, in Q2.14, computed at compile time by the
 // exact integer root above: sqrt(2^28 * 128 / (33 + 2i)).
@@ -107,7 +130,10 @@ constexpr To sqrt(From x) {
   const auto u = static_cast<detail::u64>(x.raw());
   // Result raw = sqrt(raw * 2^e) with e = 2 FT - F.
   constexpr int e = 2 * To::frac_bits - From::frac_bits;
-  if constexpr (e >= 0) {
+  if constexpr (e == 0) {
+    const auto r = detail::isqrt_plain(u, static_cast<detail::u64>(To::max_raw));
+    return detail::from_sign_mag<To>(false, r.root + (r.round_up ? 1u : 0u), r.over);
+  } else if constexpr (e > 0) {
     const auto r = detail::isqrt_shifted(u, e, static_cast<detail::u64>(To::max_raw));
     return detail::from_sign_mag<To>(false, r.root + (r.round_up ? 1u : 0u), r.over);
   } else {

@@ -122,7 +122,7 @@ constexpr Arc make_arc(const Unit& from, const Unit& to) {
   }
   arc.tangent = t;
   // θ = atan2(sin θ, cos θ) with sin θ = w·t = |w|: accurate at every angle, unlike acos.
-  arc.angle = fx::atan2(fx::dot<q1_30>(w, t), c);
+  arc.angle = fx::atan2_fast(fx::dot<q1_30>(w, t), c);
   return arc;
 }
 
@@ -173,7 +173,7 @@ constexpr Unit rotate(const Rotation& r, const Unit& v) {
 // The point at angle ψ along the arc (equal-angle interpolation, no renormalisation).
 constexpr Unit arc_at(const Arc& arc, angle_t psi) {
   if (!arc.has_direction()) return arc.from;
-  const fx::SinCos sc = fx::sin_cos(psi);
+  const fx::SinCos sc = fx::sin_cos_fast(psi);
   return combine(sc.cos, arc.from, sc.sin, arc.tangent);
 }
 
@@ -200,14 +200,14 @@ constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o =
   if (!arc.has_direction()) {
     // V_L ≈ V_R: take the circle through O and V_L (s = 0, φ = angle(O, V_L)).
     c.constant = true;
-    c.phi_left = fx::atan2(length(fx::cross<q1_30>(vl, o)), fx::dot<q1_30>(vl, o));
+    c.phi_left = fx::atan2_fast(length(fx::cross<q1_30>(vl, o)), fx::dot<q1_30>(vl, o));
     return c;
   }
   // Pole of the arc's plane; unit because from ⟂ tangent, both unit.
   const Unit p = fx::cross<q1_30>(arc.from, arc.tangent);
   const Unit q = fx::cross<q1_30>(p, o);
-  c.s = fx::atan2(fx::abs_sat(fx::dot<q1_30>(p, o)), length(q));
-  c.phi_left = fx::atan2(fx::dot<q1_30>(vl, q), fx::dot<q1_30>(vl, o));
+  c.s = fx::atan2_fast(fx::abs_sat(fx::dot<q1_30>(p, o)), length(q));
+  c.phi_left = fx::atan2_fast(fx::dot<q1_30>(vl, q), fx::dot<q1_30>(vl, o));
   c.theta = arc.angle;
   return c;
 }

@@ -69,6 +69,12 @@ class KbOneVectorMethod final : public ShadingMethod {
   Counters* counters_ = nullptr;
   Unit o_{};
   cosn::CosnCoeffs diffuse_{}, specular_{};
+  Support diffuse_support_{}, specular_support_{};
+  // The material (n, a, b) the coefficients and supports above were made for: they depend on
+  // nothing else, so consecutive triangles of one material reuse them.
+  bool coeffs_cached_ = false;
+  std::uint32_t cached_n_ = 0;
+  std::int32_t cached_a_ = 0, cached_b_ = 0;
   int terms_ = 0;
   OneVectorTerm term_[kMaxTerms];
   std::int64_t ambient_[3] = {0, 0, 0};
@@ -105,6 +111,12 @@ class KbDecompositionMethod final : public ShadingMethod {
   };
   TwoVectorTriangle t_;
   cosn::CosnCoeffs diffuse_{}, specular_{};
+  Support diffuse_support_{}, specular_support_{};
+  // The material (n, a, b) the coefficients and supports above were made for: they depend on
+  // nothing else, so consecutive triangles of one material reuse them.
+  bool coeffs_cached_ = false;
+  std::uint32_t cached_n_ = 0;
+  std::int32_t cached_a_ = 0, cached_b_ = 0;
   int terms_ = 0;
   Term term_[kMaxTerms];
 };

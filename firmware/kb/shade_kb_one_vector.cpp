@@ -107,10 +107,18 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const MaterialCmd& m = ctx.material;
   for (int c = 0; c < 3; ++c) ambient_[c] = ambient_value(m.ka, m.color[c]);
   ambient_rgb_ = Rgb8{level_of(ambient_[0]), level_of(ambient_[1]), level_of(ambient_[2])};
-  diffuse_ = cosn::make_coeffs(diffuse_params());
-  specular_ = cosn::make_coeffs(specular_params(m));
-  const Support diffuse_support = support_of(diffuse_);
-  const Support specular_support = support_of(specular_);
+  if (!coeffs_cached_ || cached_n_ != m.n || cached_a_ != m.a.raw() || cached_b_ != m.b.raw()) {
+    diffuse_ = cosn::make_coeffs(diffuse_params());
+    specular_ = cosn::make_coeffs(specular_params(m));
+    diffuse_support_ = support_of(diffuse_);
+    specular_support_ = support_of(specular_);
+    coeffs_cached_ = true;
+    cached_n_ = m.n;
+    cached_a_ = m.a.raw();
+    cached_b_ = m.b.raw();
+  }
+  const Support& diffuse_support = diffuse_support_;
+  const Support& specular_support = specular_support_;
 
   o_ = o_choice_ == OChoice::kPaper && !near_antipode(tri) ? kO : mean_normal(tri);
   Rotation rot[3];
