@@ -62,20 +62,18 @@ constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
 }
 
 // The same for e = 0 (the common case: a Q2.60 square into Q1.30), by the shift-and-subtract
-// form of the digit-by-digit method (one comparison per root bit, no bit-pair extraction):
+// form of the digit-by-digit method (one comparison per root bit, branch-free, no bit-pair extraction):
 // the identical root, round_up and over.
 constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   RootResult r;
   if (u == 0) return r;
   u64 op = u, res = 0, one = u64{1} << 62;  // the largest power of 4 <= u, then down
   while (one > op) one >>= 2;
-  while (one != 0) {
-    if (op >= res + one) {
-      op -= res + one;
-      res = (res >> 1) + one;
-    } else {
-      res >>= 1;
-    }
+  while (one != 0) {  // branch-free: the root bits are data, not control flow
+    const u64 trial = res + one;
+    const u64 take = u64{0} - static_cast<u64>(op >= trial);  // all ones or zero
+    op -= trial & take;
+    res = (res >> 1) + (one & take);
     one >>= 2;
   }
   r.root = res;

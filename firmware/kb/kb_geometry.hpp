@@ -154,7 +154,8 @@ constexpr Rotation rotation_to(const Unit& n, const Unit& o) {
     r.cos = fx::neg_sat(q1_30::one());
     return r;
   }
-  r.sin = length(a);
+  // |a| = a·k0 (k0 = a/|a|), up to a few LSB of rounding: no square root.
+  r.sin = fx::dot<q1_30>(a, k0);
   return r;
 }
 constexpr Unit rotate(const Rotation& r, const Unit& v) {
