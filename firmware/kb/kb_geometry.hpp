@@ -25,6 +25,7 @@
 //    a triangle): every great circle through both ends is valid; a fixed perpendicular picks one.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "fixedpoint/arith.hpp"
@@ -195,8 +196,47 @@ struct SpanCircle {
 // shade_kb_one_vector.cpp): with pole P and Q' = P × O, |Q'| = cos s and P·O = ±sin s, and
 //   cos s·(V·S) = V·O,   cos s·(V·Q) = V·Q'   (Q = P × S = Q'/cos s),
 // so φ(V) = atan2(V·Q', V·O), s = atan2(|P·O|, |Q'|).
+//
+// The pole comes from the exact cross product V_L × V_R (Q.60, two exact products per
+// component; |V_L × V_R| = sin θ), scaled by a power of two to unit size: no normalisation, and
+// exact in direction up to that one rounding. s and φ are ratios, so the scale drops out of s
+// and is carried as |P| in φ; θ = atan2(sin θ, cos θ). Only a pole of a few LSB (V_L ≈ ±V_R)
+// takes the arc construction below (constant span, or the half turn).
 constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o = kO) {
   SpanCircle c;
+  using W = fx::Q<2, 60, std::int64_t>;
+  const std::int64_t pw[3] = {
+      std::int64_t{vl.y.raw()} * vr.z.raw() - std::int64_t{vl.z.raw()} * vr.y.raw(),
+      std::int64_t{vl.z.raw()} * vr.x.raw() - std::int64_t{vl.x.raw()} * vr.z.raw(),
+      std::int64_t{vl.x.raw()} * vr.y.raw() - std::int64_t{vl.y.raw()} * vr.x.raw()};  // < 2^61
+  const auto mag = [](std::int64_t v) {
+    return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+  };
+  const std::uint64_t big = mag(pw[0]) | mag(pw[1]) | mag(pw[2]);
+  if (big > (std::uint64_t{kNegligibleRaw} << 31)) {  // beyond ~16 LSB of Q1.30
+    // Largest component into [2^29, 2^30): Pn = P·2^-shift, shift >= 4 here.
+    const int shift = static_cast<int>(std::bit_width(big)) - 30;
+    const Unit pn{q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[0], shift))),
+                  q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[1], shift))),
+                  q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[2], shift)))};
+    const q1_30 pn_len = length(pn);  // in [2^29, √3·2^30) raw
+    const Unit q = fx::cross<q1_30>(pn, o);
+    c.s = fx::atan2_fast(fx::abs_sat(fx::dot<q1_30>(pn, o)), length(q));
+    // φ_L = atan2(V_L·Q', V_L·O) with Q' = P × O = (Pn × O)/|Pn|: both sides times |Pn|, in Q.60.
+    const std::int64_t num = fx::dot<W>(vl, q).raw();
+    const std::int64_t den = std::int64_t{fx::dot<q1_30>(vl, o).raw()} * pn_len.raw();
+    c.phi_left = fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(num, den));
+    // θ = atan2(|P|, V_L·V_R) with |P| = |Pn|·2^(shift − 30) in Q1.30 units: both in Q.(60 −
+    // shift) ... scaled to a common exponent (|.| < 2^62).
+    const std::int64_t cos_t = fx::dot<q1_30>(vl, vr).raw();
+    const std::int64_t sin_t = pn_len.raw();
+    c.theta = shift >= 30
+                  ? fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(
+                        sin_t * (std::int64_t{1} << (shift - 30 > 30 ? 30 : shift - 30)), cos_t))
+                  : fx::detail::angle_from_q60(
+                        fx::detail::cordic_vectoring_fast(sin_t, cos_t * (std::int64_t{1} << (30 - shift))));
+    return c;
+  }
   const Arc arc = make_arc(vl, vr);
   if (!arc.has_direction()) {
     // V_L ≈ V_R: take the circle through O and V_L (s = 0, φ = angle(O, V_L)).
