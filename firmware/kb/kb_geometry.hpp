@@ -106,9 +106,61 @@ struct Arc {
   }
 };
 
+// The exact pole from × to (Q.60: two exact products per component, |.| = sin θ) and its
+// largest component's bit width; 0 for a pole of at most ~16 LSB of Q1.30 (ends equal or
+// opposite up to rounding).
+struct ExactPole {
+  std::int64_t p[3] = {0, 0, 0};
+  int width = 0;
+};
+constexpr ExactPole exact_pole(const Unit& a, const Unit& b) {
+  ExactPole e;
+  e.p[0] = std::int64_t{a.y.raw()} * b.z.raw() - std::int64_t{a.z.raw()} * b.y.raw();
+  e.p[1] = std::int64_t{a.z.raw()} * b.x.raw() - std::int64_t{a.x.raw()} * b.z.raw();
+  e.p[2] = std::int64_t{a.x.raw()} * b.y.raw() - std::int64_t{a.y.raw()} * b.x.raw();  // < 2^61
+  const auto mag = [](std::int64_t v) {
+    return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+  };
+  const std::uint64_t big = mag(e.p[0]) | mag(e.p[1]) | mag(e.p[2]);
+  if (big > (std::uint64_t{kNegligibleRaw} << 31)) e.width = static_cast<int>(std::bit_width(big));
+  return e;
+}
+// The pole scaled by 2^-(width − 30): largest component in [2^29, 2^30) raw (shift >= 5).
+constexpr Unit scaled_pole(const ExactPole& e) {
+  const int shift = e.width - 30;
+  const auto cut = [shift](std::int64_t v) {
+    return q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(v, shift)));
+  };
+  return {cut(e.p[0]), cut(e.p[1]), cut(e.p[2])};
+}
+// θ = atan2(sin θ, cos θ) with sin θ = |Pn|·2^(width − 60) (|Pn| raw in Q1.30), in Q.60 terms.
+constexpr angle_t pole_angle(const ExactPole& e, q1_30 pn_len, q1_30 cos_t) {
+  const int shift = e.width - 30;
+  const std::int64_t s = pn_len.raw(), c = cos_t.raw();
+  return fx::detail::angle_from_q60(
+      shift >= 30 ? fx::detail::cordic_vectoring_fast(s * (std::int64_t{1} << (shift - 30)), c)
+                  : fx::detail::cordic_vectoring_fast(s, c * (std::int64_t{1} << (30 - shift))));
+}
+
 constexpr Arc make_arc(const Unit& from, const Unit& to) {
   Arc arc{from, Unit{}, angle_t::zero()};
   const q1_30 c = fx::dot<q1_30>(from, to);
+  // The tangent from the exact pole: T = (P × from)/|P| with P scaled to unit size by a power of
+  // two (Pn): T = (Pn × from)/|Pn|, one reciprocal (Q.61 / Q.30 -> Q.31) for the three
+  // components. Ends equal or opposite up to a few LSB: the construction below.
+  const ExactPole pole = exact_pole(from, to);
+  if (pole.width != 0) {
+    const Unit pn = scaled_pole(pole);
+    const q1_30 pn_len = length(pn);  // [2^29, √3·2^30) raw
+    const Unit tu = fx::cross<q1_30>(pn, from);
+    const std::int64_t inv = (std::int64_t{1} << 61) / pn_len.raw();  // 1/|Pn| in Q.31, < 2^32
+    const auto one = [inv](q1_30 v) {
+      return q1_30::from_raw_sat(fx::detail::round_shift_right(std::int64_t{v.raw()} * inv, 31));
+    };
+    arc.tangent = Unit{one(tu.x), one(tu.y), one(tu.z)};
+    arc.angle = pole_angle(pole, pn_len, c);
+    return arc;
+  }
   // w = to − (from·to)·from: the part of `to` orthogonal to `from`; |w| = sin θ.
   Unit w = combine(q1_30::one(), to, fx::neg_sat(c), from);
   // Orthogonalise once more: near 0 and π, w is small and its rounding has a part along
@@ -205,20 +257,9 @@ struct SpanCircle {
 constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o = kO) {
   SpanCircle c;
   using W = fx::Q<2, 60, std::int64_t>;
-  const std::int64_t pw[3] = {
-      std::int64_t{vl.y.raw()} * vr.z.raw() - std::int64_t{vl.z.raw()} * vr.y.raw(),
-      std::int64_t{vl.z.raw()} * vr.x.raw() - std::int64_t{vl.x.raw()} * vr.z.raw(),
-      std::int64_t{vl.x.raw()} * vr.y.raw() - std::int64_t{vl.y.raw()} * vr.x.raw()};  // < 2^61
-  const auto mag = [](std::int64_t v) {
-    return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
-  };
-  const std::uint64_t big = mag(pw[0]) | mag(pw[1]) | mag(pw[2]);
-  if (big > (std::uint64_t{kNegligibleRaw} << 31)) {  // beyond ~16 LSB of Q1.30
-    // Largest component into [2^29, 2^30): Pn = P·2^-shift, shift >= 4 here.
-    const int shift = static_cast<int>(std::bit_width(big)) - 30;
-    const Unit pn{q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[0], shift))),
-                  q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[1], shift))),
-                  q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(pw[2], shift)))};
+  const ExactPole pole = exact_pole(vl, vr);
+  if (pole.width != 0) {
+    const Unit pn = scaled_pole(pole);
     const q1_30 pn_len = length(pn);  // in [2^29, √3·2^30) raw
     const Unit q = fx::cross<q1_30>(pn, o);
     c.s = fx::atan2_fast(fx::abs_sat(fx::dot<q1_30>(pn, o)), length(q));
@@ -226,15 +267,7 @@ constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o =
     const std::int64_t num = fx::dot<W>(vl, q).raw();
     const std::int64_t den = std::int64_t{fx::dot<q1_30>(vl, o).raw()} * pn_len.raw();
     c.phi_left = fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(num, den));
-    // θ = atan2(|P|, V_L·V_R) with |P| = |Pn|·2^(shift − 30) in Q1.30 units: both in Q.(60 −
-    // shift) ... scaled to a common exponent (|.| < 2^62).
-    const std::int64_t cos_t = fx::dot<q1_30>(vl, vr).raw();
-    const std::int64_t sin_t = pn_len.raw();
-    c.theta = shift >= 30
-                  ? fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(
-                        sin_t * (std::int64_t{1} << (shift - 30 > 30 ? 30 : shift - 30)), cos_t))
-                  : fx::detail::angle_from_q60(
-                        fx::detail::cordic_vectoring_fast(sin_t, cos_t * (std::int64_t{1} << (30 - shift))));
+    c.theta = pole_angle(pole, pn_len, fx::dot<q1_30>(vl, vr));
     return c;
   }
   const Arc arc = make_arc(vl, vr);
