@@ -7,6 +7,11 @@
 //   to_polar(x, y) vectoring: |(x, y)| (gain-compensated, rounded into T, saturated) + angle.
 //   acos_unit(c)   angle in [0, π] of a cosine: atan2(sqrt(1 - c^2), c); c is clamped to
 //                  [-1, 1] (so acos_unit(c > 1) = 0, acos_unit(c < -1) = π).
+//   atan2_fast, sin_cos_fast: the same results from the first 8 CORDIC steps only, the
+//                  residual angle (below atan 2^-7) finished in closed form (atan t = t − t³/3,
+//                  sin/cos by their Taylor series), for the Kuijk-Blake span setup. The
+//                  truncated series and working roundings add < 2^-36 rad; measured max error
+//                  in tests/fixedpoint/test_cordic.cpp (CordicFast).
 //
 // Working precision: x, y, z in int64 with 60 fractional bits and kIterations = 40 steps, so
 // the residual angle (< 2^-39) and the per-step rounding (40 * 2^-61) are far below the output
@@ -91,7 +96,110 @@ constexpr Vectored cordic_vectoring(wide_t y, wide_t x) {
   return v;
 }
 
+inline constexpr int kFastIterations = tables::cordic_fast_iterations;
+static_assert(kFastIterations == 8, "the residual bounds below assume 8 steps");
+
+// Vectoring mode, 8 steps, then the residual: atan2(y, x) with x > 0, |y| / x < tan(2^-6).
+// Returns the angle in Q60.
+constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
+  if (x == 0 && y == 0) return 0;
+  // Largest component scaled to [2^58, 2^59): x grows by K_8·sqrt 2 < 2.33, below 2^61.
+  const u64 m = magnitude(x) > magnitude(y) ? magnitude(x) : magnitude(y);
+  const int shift = 59 - (64 - std::countl_zero(m));
+  if (shift >= 0) {
+    x *= wide_t{1} << shift;
+    y *= wide_t{1} << shift;
+  } else {
+    x = round_shift_right(x, -shift);
+    y = round_shift_right(y, -shift);
+  }
+  wide_t z = 0;
+  if (x < 0) {
+    z = y >= 0 ? kPiQ60 : -kPiQ60;
+    x = -x;
+    y = -y;
+  }
+  for (int i = 0; i < kFastIterations; ++i) {
+    const wide_t xs = x >> i, ys = y >> i;  // floor shifts: a bias of 2^-60 per step
+    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+    if (y >= 0) {
+      x += ys;
+      y -= xs;
+      z += a;
+    } else {
+      x -= ys;
+      y += xs;
+      z -= a;
+    }
+  }
+  // Now x in [2^58, 2^61) and the residual angle r = atan(t), t = |y|/x < tan(atan 2^-7)
+  // (so |y| < 2^54). t in Q54 by two 64-bit divisions (x truncated to 2^-34 relative).
+  const u64 ym = magnitude(y);
+  const u64 xd = static_cast<u64>(x) >> 24;          // [2^34, 2^37)
+  const u64 yn = ym << 6;                            // < 2^60
+  const u64 q = yn / xd, r = yn % xd;                // t in Q30, < 2^24
+  const u64 t54 = (q << 24) + ((r << 24) / xd);      // r < 2^37: r << 24 < 2^61
+  // atan t = t − t³/3 + t⁵/5 − …: t⁵/5 < 2^-37.
+  const u64 t36 = t54 >> 18;                         // < 2^29
+  const u64 t2_36 = (t36 * t36) >> 36;               // < 2^22
+  const u64 cube54 = (t2_36 * t36) >> 18;            // t³ in Q54
+  const wide_t atan54 = static_cast<wide_t>(t54) - static_cast<wide_t>(cube54 / 3);
+  return z + (y >= 0 ? atan54 : -atan54) * 64;       // Q54 -> Q60
+}
+
 }  // namespace detail
+
+// sin_cos by 8 rotation steps, then the residual rotation by |z| < atan 2^-7 in closed form:
+// cos z = 1 − e, e = z²/2 − z⁴/24 (z⁶/720 < 2^-51), sin z = z − z³/6 (z⁵/120 < 2^-41).
+constexpr SinCos sin_cos_fast(angle_t theta) {
+  using detail::wide_t;
+  wide_t z = wide_t{theta.raw()} * (wide_t{1} << 31);
+  bool flip = false;
+  if (z > detail::kHalfPiQ60) {
+    z -= detail::kPiQ60;
+    flip = true;
+  } else if (z < -detail::kHalfPiQ60) {
+    z += detail::kPiQ60;
+    flip = true;
+  }
+  wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
+  for (int i = 0; i < detail::kFastIterations; ++i) {
+    const wide_t xs = x >> i, ys = y >> i;
+    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+    if (z >= 0) {
+      x -= ys;
+      y += xs;
+      z -= a;
+    } else {
+      x += ys;
+      y -= xs;
+      z += a;
+    }
+  }
+  // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
+  const wide_t z30 = detail::round_shift_right(z, 30);      // |.| < 2^23
+  const wide_t z2_60 = z30 * z30;                            // < 2^46
+  const wide_t z2_30 = z2_60 >> 30;                          // < 2^16
+  const wide_t e60 = z2_60 / 2 - (z2_30 * z2_30) / 24;       // 1 − cos z, < 2^45
+  const wide_t s60 = z - (z2_30 * z30) / 6;                  // sin z, |.| < 2^53
+  // x·e: Q32 × Q45 -> Q77 (< 2^62); y·s: Q31 × Q38 -> Q69 (< 2^62).
+  const wide_t e45 = e60 >> 15, s38 = detail::round_shift_right(s60, 22);
+  const wide_t x32 = detail::round_shift_right(x, 28), y32 = detail::round_shift_right(y, 28);
+  const wide_t x31 = detail::round_shift_right(x, 29), y31 = detail::round_shift_right(y, 29);
+  wide_t xr = x - detail::round_shift_right(x32 * e45, 17) - detail::round_shift_right(y31 * s38, 9);
+  wide_t yr = y - detail::round_shift_right(y32 * e45, 17) + detail::round_shift_right(x31 * s38, 9);
+  if (flip) {
+    xr = -xr;
+    yr = -yr;
+  }
+  return SinCos{q1_30::from_raw_sat(detail::round_shift_right(yr, 30)),
+                q1_30::from_raw_sat(detail::round_shift_right(xr, 30))};
+}
+
+template <QType T>
+constexpr angle_t atan2_fast(T y, T x) {
+  return detail::angle_from_q60(detail::cordic_vectoring_fast(y.raw(), x.raw()));
+}
 
 constexpr SinCos sin_cos(angle_t theta) {
   // angle_t raw * 2^31 -> Q60; |raw| <= 2^31 so |z| <= 2^62.

@@ -61,6 +61,38 @@ constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
   return r;
 }
 
+// The same for e = 0 (the common case: a Q2.60 square into Q1.30): the identical root,
+// round_up and over, from a 192-entry seed (2^-8 relative) and two integer Newton steps
+// r' = (r + u / r) / 2 (2^-17, then 2^-35 relative: within one of the root below 2^32), then
+// an exact correction by r² against u. Radicands below 2^16 take the digit-by-digit root.
+inline constexpr std::array<std::uint16_t, 256> isqrt_seed = [] {
+  std::array<std::uint16_t, 256> t{};
+  for (int i = 64; i < 256; ++i) {  // sqrt(i + 1/2) · 2^8 = sqrt((2i + 1) · 2^15)
+    const RootResult r = isqrt_shifted(static_cast<u64>(2 * i + 1), 15, u64{1} << 20);
+    t[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(r.root);
+  }
+  return t;
+}();
+constexpr RootResult isqrt_plain(u64 u, u64 limit) {
+  if (u < (u64{1} << 16)) return isqrt_shifted(u, 0, limit);
+  const int b = 64 - std::countl_zero(u);  // 17..64
+  const int sh = (b - 7) & ~1;              // even, so that top = u >> sh is in [64, 256)
+  const u64 top = u >> sh;
+  u64 r = (u64{isqrt_seed[static_cast<std::size_t>(top)]} << (sh / 2)) >> 8;
+  if (r == 0) r = 1;
+  r = (r + u / r) >> 1;
+  r = (r + u / r) >> 1;
+  if (r > 0xffffffffu) r = 0xffffffffu;    // the root of any u64 is below 2^32
+  while (r * r > u) --r;
+  while (r < 0xffffffffu && (r + 1) * (r + 1) <= u) ++r;
+  RootResult res;
+  res.root = r;
+  const u64 rem = u - r * r;
+  res.round_up = rem > r;
+  res.over = r > limit;
+  return res;
+}
+
 // Seed for 1/sqrt(y), y in [1/4, 1) split into 48 intervals of width 1/64 by y's top bits:
 // 1/sqrt at each interval midpoint (33 + 2i) / 128, in Q2.14, computed at compile time by the
 // exact integer root above: sqrt(2^28 * 128 / (33 + 2i)).
@@ -107,7 +139,10 @@ constexpr To sqrt(From x) {
   const auto u = static_cast<detail::u64>(x.raw());
   // Result raw = sqrt(raw * 2^e) with e = 2 FT - F.
   constexpr int e = 2 * To::frac_bits - From::frac_bits;
-  if constexpr (e >= 0) {
+  if constexpr (e == 0) {
+    const auto r = detail::isqrt_plain(u, static_cast<detail::u64>(To::max_raw));
+    return detail::from_sign_mag<To>(false, r.root + (r.round_up ? 1u : 0u), r.over);
+  } else if constexpr (e > 0) {
     const auto r = detail::isqrt_shifted(u, e, static_cast<detail::u64>(To::max_raw));
     return detail::from_sign_mag<To>(false, r.root + (r.round_up ? 1u : 0u), r.over);
   } else {

@@ -30,10 +30,18 @@ int main(int argc, char** argv) {
     std::fprintf(f, "    %lldLL,\n", rnd(std::atan(std::ldexp(1.0L, -i)), 60));
   long double k = 1.0L;
   for (int i = 0; i < kN; ++i) k /= std::sqrt(1.0L + std::ldexp(1.0L, -2 * i));
+  // The setup-grade variants (fixedpoint/cordic.hpp: atan2_fast, sin_cos_fast) run only the
+  // first cordic_fast_iterations steps and finish the residual angle in closed form.
+  constexpr int kFast = 8;
+  long double k_fast = 1.0L;
+  for (int i = 0; i < kFast; ++i) k_fast /= std::sqrt(1.0L + std::ldexp(1.0L, -2 * i));
   const long double pi = std::acos(-1.0L);
   std::fprintf(f, "};\n// 1/K = prod 1/sqrt(1 + 2^-2i) (= %.21Lg), Q60 and Q1.30.\n", k);
   std::fprintf(f, "inline constexpr std::int64_t cordic_gain_inv_q60 = %lldLL;\n", rnd(k, 60));
   std::fprintf(f, "inline constexpr std::int32_t cordic_gain_inv_q1_30 = %lld;\n", rnd(k, 30));
+  std::fprintf(f, "inline constexpr int cordic_fast_iterations = %d;\n", kFast);
+  std::fprintf(f, "// 1/K over the first %d steps (= %.21Lg), Q60.\n", kFast, k_fast);
+  std::fprintf(f, "inline constexpr std::int64_t cordic_fast_gain_inv_q60 = %lldLL;\n", rnd(k_fast, 60));
   std::fprintf(f, "inline constexpr std::int64_t pi_q60 = %lldLL;\n", rnd(pi, 60));
   std::fprintf(f, "inline constexpr std::int32_t pi_q2_29 = %lld;\n", rnd(pi, 29));
   std::fprintf(f, "\n}  // namespace tp::tables\n");

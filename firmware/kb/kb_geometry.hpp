@@ -25,6 +25,7 @@
 //    a triangle): every great circle through both ends is valid; a fixed perpendicular picks one.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "fixedpoint/arith.hpp"
@@ -105,9 +106,61 @@ struct Arc {
   }
 };
 
+// The exact pole from × to (Q.60: two exact products per component, |.| = sin θ) and its
+// largest component's bit width; 0 for a pole of at most ~16 LSB of Q1.30 (ends equal or
+// opposite up to rounding).
+struct ExactPole {
+  std::int64_t p[3] = {0, 0, 0};
+  int width = 0;
+};
+constexpr ExactPole exact_pole(const Unit& a, const Unit& b) {
+  ExactPole e;
+  e.p[0] = std::int64_t{a.y.raw()} * b.z.raw() - std::int64_t{a.z.raw()} * b.y.raw();
+  e.p[1] = std::int64_t{a.z.raw()} * b.x.raw() - std::int64_t{a.x.raw()} * b.z.raw();
+  e.p[2] = std::int64_t{a.x.raw()} * b.y.raw() - std::int64_t{a.y.raw()} * b.x.raw();  // < 2^61
+  const auto mag = [](std::int64_t v) {
+    return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
+  };
+  const std::uint64_t big = mag(e.p[0]) | mag(e.p[1]) | mag(e.p[2]);
+  if (big > (std::uint64_t{kNegligibleRaw} << 31)) e.width = static_cast<int>(std::bit_width(big));
+  return e;
+}
+// The pole scaled by 2^-(width − 30): largest component in [2^29, 2^30) raw (shift >= 5).
+constexpr Unit scaled_pole(const ExactPole& e) {
+  const int shift = e.width - 30;
+  const auto cut = [shift](std::int64_t v) {
+    return q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(v, shift)));
+  };
+  return {cut(e.p[0]), cut(e.p[1]), cut(e.p[2])};
+}
+// θ = atan2(sin θ, cos θ) with sin θ = |Pn|·2^(width − 60) (|Pn| raw in Q1.30), in Q.60 terms.
+constexpr angle_t pole_angle(const ExactPole& e, q1_30 pn_len, q1_30 cos_t) {
+  const int shift = e.width - 30;
+  const std::int64_t s = pn_len.raw(), c = cos_t.raw();
+  return fx::detail::angle_from_q60(
+      shift >= 30 ? fx::detail::cordic_vectoring_fast(s * (std::int64_t{1} << (shift - 30)), c)
+                  : fx::detail::cordic_vectoring_fast(s, c * (std::int64_t{1} << (30 - shift))));
+}
+
 constexpr Arc make_arc(const Unit& from, const Unit& to) {
   Arc arc{from, Unit{}, angle_t::zero()};
   const q1_30 c = fx::dot<q1_30>(from, to);
+  // The tangent from the exact pole: T = (P × from)/|P| with P scaled to unit size by a power of
+  // two (Pn): T = (Pn × from)/|Pn|, one reciprocal (Q.61 / Q.30 -> Q.31) for the three
+  // components. Ends equal or opposite up to a few LSB: the construction below.
+  const ExactPole pole = exact_pole(from, to);
+  if (pole.width != 0) {
+    const Unit pn = scaled_pole(pole);
+    const q1_30 pn_len = length(pn);  // [2^29, √3·2^30) raw
+    const Unit tu = fx::cross<q1_30>(pn, from);
+    const std::int64_t inv = (std::int64_t{1} << 61) / pn_len.raw();  // 1/|Pn| in Q.31, < 2^32
+    const auto one = [inv](q1_30 v) {
+      return q1_30::from_raw_sat(fx::detail::round_shift_right(std::int64_t{v.raw()} * inv, 31));
+    };
+    arc.tangent = Unit{one(tu.x), one(tu.y), one(tu.z)};
+    arc.angle = pole_angle(pole, pn_len, c);
+    return arc;
+  }
   // w = to − (from·to)·from: the part of `to` orthogonal to `from`; |w| = sin θ.
   Unit w = combine(q1_30::one(), to, fx::neg_sat(c), from);
   // Orthogonalise once more: near 0 and π, w is small and its rounding has a part along
@@ -122,7 +175,7 @@ constexpr Arc make_arc(const Unit& from, const Unit& to) {
   }
   arc.tangent = t;
   // θ = atan2(sin θ, cos θ) with sin θ = w·t = |w|: accurate at every angle, unlike acos.
-  arc.angle = fx::atan2(fx::dot<q1_30>(w, t), c);
+  arc.angle = fx::atan2_fast(fx::dot<q1_30>(w, t), c);
   return arc;
 }
 
@@ -154,7 +207,8 @@ constexpr Rotation rotation_to(const Unit& n, const Unit& o) {
     r.cos = fx::neg_sat(q1_30::one());
     return r;
   }
-  r.sin = length(a);
+  // |a| = a·k0 (k0 = a/|a|), up to a few LSB of rounding: no square root.
+  r.sin = fx::dot<q1_30>(a, k0);
   return r;
 }
 constexpr Unit rotate(const Rotation& r, const Unit& v) {
@@ -173,7 +227,7 @@ constexpr Unit rotate(const Rotation& r, const Unit& v) {
 // The point at angle ψ along the arc (equal-angle interpolation, no renormalisation).
 constexpr Unit arc_at(const Arc& arc, angle_t psi) {
   if (!arc.has_direction()) return arc.from;
-  const fx::SinCos sc = fx::sin_cos(psi);
+  const fx::SinCos sc = fx::sin_cos_fast(psi);
   return combine(sc.cos, arc.from, sc.sin, arc.tangent);
 }
 
@@ -194,20 +248,40 @@ struct SpanCircle {
 // shade_kb_one_vector.cpp): with pole P and Q' = P × O, |Q'| = cos s and P·O = ±sin s, and
 //   cos s·(V·S) = V·O,   cos s·(V·Q) = V·Q'   (Q = P × S = Q'/cos s),
 // so φ(V) = atan2(V·Q', V·O), s = atan2(|P·O|, |Q'|).
+//
+// The pole comes from the exact cross product V_L × V_R (Q.60, two exact products per
+// component; |V_L × V_R| = sin θ), scaled by a power of two to unit size: no normalisation, and
+// exact in direction up to that one rounding. s and φ are ratios, so the scale drops out of s
+// and is carried as |P| in φ; θ = atan2(sin θ, cos θ). Only a pole of a few LSB (V_L ≈ ±V_R)
+// takes the arc construction below (constant span, or the half turn).
 constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o = kO) {
   SpanCircle c;
+  using W = fx::Q<2, 60, std::int64_t>;
+  const ExactPole pole = exact_pole(vl, vr);
+  if (pole.width != 0) {
+    const Unit pn = scaled_pole(pole);
+    const q1_30 pn_len = length(pn);  // in [2^29, √3·2^30) raw
+    const Unit q = fx::cross<q1_30>(pn, o);
+    c.s = fx::atan2_fast(fx::abs_sat(fx::dot<q1_30>(pn, o)), length(q));
+    // φ_L = atan2(V_L·Q', V_L·O) with Q' = P × O = (Pn × O)/|Pn|: both sides times |Pn|, in Q.60.
+    const std::int64_t num = fx::dot<W>(vl, q).raw();
+    const std::int64_t den = std::int64_t{fx::dot<q1_30>(vl, o).raw()} * pn_len.raw();
+    c.phi_left = fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(num, den));
+    c.theta = pole_angle(pole, pn_len, fx::dot<q1_30>(vl, vr));
+    return c;
+  }
   const Arc arc = make_arc(vl, vr);
   if (!arc.has_direction()) {
     // V_L ≈ V_R: take the circle through O and V_L (s = 0, φ = angle(O, V_L)).
     c.constant = true;
-    c.phi_left = fx::atan2(length(fx::cross<q1_30>(vl, o)), fx::dot<q1_30>(vl, o));
+    c.phi_left = fx::atan2_fast(length(fx::cross<q1_30>(vl, o)), fx::dot<q1_30>(vl, o));
     return c;
   }
   // Pole of the arc's plane; unit because from ⟂ tangent, both unit.
   const Unit p = fx::cross<q1_30>(arc.from, arc.tangent);
   const Unit q = fx::cross<q1_30>(p, o);
-  c.s = fx::atan2(fx::abs_sat(fx::dot<q1_30>(p, o)), length(q));
-  c.phi_left = fx::atan2(fx::dot<q1_30>(vl, q), fx::dot<q1_30>(vl, o));
+  c.s = fx::atan2_fast(fx::abs_sat(fx::dot<q1_30>(p, o)), length(q));
+  c.phi_left = fx::atan2_fast(fx::dot<q1_30>(vl, q), fx::dot<q1_30>(vl, o));
   c.theta = arc.angle;
   return c;
 }

@@ -69,6 +69,29 @@ class KbOneVectorMethod final : public ShadingMethod {
   Counters* counters_ = nullptr;
   Unit o_{};
   cosn::CosnCoeffs diffuse_{}, specular_{};
+  Support diffuse_support_{}, specular_support_{};
+  // The material (n, a, b) the coefficients and supports above were made for: they depend on
+  // nothing else, so consecutive triangles of one material reuse them.
+  bool coeffs_cached_ = false;
+  std::uint32_t cached_n_ = 0;
+  std::int32_t cached_a_ = 0, cached_b_ = 0;
+  // Memos of pure per-vertex functions (exact: the same inputs give the same bits). Neighbouring
+  // triangles share vertices, and a directional light with the eye at infinity has one H.
+  struct RotationMemo {
+    Unit n{}, o{};
+    Rotation r{};
+    bool valid = false;
+  };
+  static constexpr int kRotationMemo = 8;
+  RotationMemo rotation_memo_[kRotationMemo];
+  int rotation_next_ = 0;
+  struct HalfwayMemo {
+    Unit l{}, e{}, h{};
+    bool valid = false;
+  };
+  HalfwayMemo halfway_memo_[kMaxLights];
+  Rotation rotation_of(const Unit& n, const Unit& o);
+  Unit halfway_of(std::size_t light, const Unit& l, const Unit& e);
   int terms_ = 0;
   OneVectorTerm term_[kMaxTerms];
   std::int64_t ambient_[3] = {0, 0, 0};
@@ -105,6 +128,12 @@ class KbDecompositionMethod final : public ShadingMethod {
   };
   TwoVectorTriangle t_;
   cosn::CosnCoeffs diffuse_{}, specular_{};
+  Support diffuse_support_{}, specular_support_{};
+  // The material (n, a, b) the coefficients and supports above were made for: they depend on
+  // nothing else, so consecutive triangles of one material reuse them.
+  bool coeffs_cached_ = false;
+  std::uint32_t cached_n_ = 0;
+  std::int32_t cached_a_ = 0, cached_b_ = 0;
   int terms_ = 0;
   Term term_[kMaxTerms];
 };

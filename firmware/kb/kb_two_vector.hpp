@@ -79,11 +79,11 @@ inline CircleFrame circle_frame(const Unit& from, const Unit& to, const Unit& hi
 // Signed angle of x around the frame's pole, from e1 toward e2 (longitude), and its angle out
 // of the circle's plane (latitude).
 inline angle_t longitude(const CircleFrame& f, const Unit& x) {
-  return fx::atan2(fx::dot<q1_30>(x, f.e2), fx::dot<q1_30>(x, f.e1));
+  return fx::atan2_fast(fx::dot<q1_30>(x, f.e2), fx::dot<q1_30>(x, f.e1));
 }
 inline angle_t latitude(const CircleFrame& f, const Unit& x) {
   const Unit in_plane{fx::dot<q1_30>(x, f.e1), fx::dot<q1_30>(x, f.e2), q1_30::zero()};
-  return fx::atan2(fx::dot<q1_30>(x, f.e3), length(in_plane));
+  return fx::atan2_fast(fx::dot<q1_30>(x, f.e3), length(in_plane));
 }
 
 // Linear angle along the span's pixels: value at the first centre and step per pixel, from

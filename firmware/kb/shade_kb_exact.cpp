@@ -19,7 +19,7 @@ namespace {
 
 // Signed angle from s to x about the pole p (x, s on p's circle).
 std::int64_t angle_from(const Unit& s, const Unit& x, const Unit& p) {
-  return fx::atan2(fx::dot<q1_30>(x, fx::cross<q1_30>(p, s)), fx::dot<q1_30>(x, s)).raw();
+  return fx::atan2_fast(fx::dot<q1_30>(x, fx::cross<q1_30>(p, s)), fx::dot<q1_30>(x, s)).raw();
 }
 
 }  // namespace
@@ -63,8 +63,8 @@ void KbExactMethod::shade_span(const Span& s, Rgb8* out) {
     std::int64_t acc[3] = {t_.ambient[0], t_.ambient[1], t_.ambient[2]};
     for (int j = 0; j < terms_; ++j) {
       Term& t = term_[j];
-      const fx::SinCos a = fx::sin_cos(angle_t::from_raw(static_cast<std::int32_t>(t.n)));
-      const fx::SinCos b = fx::sin_cos(angle_t::from_raw(static_cast<std::int32_t>(t.l)));
+      const fx::SinCos a = fx::sin_cos_fast(angle_t::from_raw(static_cast<std::int32_t>(t.n)));
+      const fx::SinCos b = fx::sin_cos_fast(angle_t::from_raw(static_cast<std::int32_t>(t.l)));
       // eq. 1; |cos α| <= 1 up to rounding, each product < 2^60, the sum < 2^61.
       const std::int64_t cc = std::int64_t{a.cos.raw()} * b.cos.raw();
       const std::int64_t ss = fx::detail::round_shift_right(std::int64_t{a.sin.raw()} * b.sin.raw(), 30);

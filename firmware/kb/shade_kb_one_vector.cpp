@@ -97,6 +97,21 @@ Unit mean_normal(const Triangle& tri) {
 
 }  // namespace
 
+Rotation KbOneVectorMethod::rotation_of(const Unit& n, const Unit& o) {
+  for (const RotationMemo& m : rotation_memo_)
+    if (m.valid && m.n == n && m.o == o) return m.r;
+  RotationMemo& m = rotation_memo_[rotation_next_];
+  rotation_next_ = (rotation_next_ + 1) % kRotationMemo;
+  m = RotationMemo{n, o, rotation_to(n, o), true};
+  return m.r;
+}
+
+Unit KbOneVectorMethod::halfway_of(std::size_t light, const Unit& l, const Unit& e) {
+  HalfwayMemo& m = halfway_memo_[light];
+  if (!m.valid || !(m.l == l) || !(m.e == e)) m = HalfwayMemo{l, e, halfway(l, e), true};
+  return m.h;
+}
+
 bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   tri_ = &tri;
   counters_ = ctx.counters;
@@ -107,27 +122,36 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const MaterialCmd& m = ctx.material;
   for (int c = 0; c < 3; ++c) ambient_[c] = ambient_value(m.ka, m.color[c]);
   ambient_rgb_ = Rgb8{level_of(ambient_[0]), level_of(ambient_[1]), level_of(ambient_[2])};
-  diffuse_ = cosn::make_coeffs(diffuse_params());
-  specular_ = cosn::make_coeffs(specular_params(m));
-  const Support diffuse_support = support_of(diffuse_);
-  const Support specular_support = support_of(specular_);
+  if (!coeffs_cached_ || cached_n_ != m.n || cached_a_ != m.a.raw() || cached_b_ != m.b.raw()) {
+    diffuse_ = cosn::make_coeffs(diffuse_params());
+    specular_ = cosn::make_coeffs(specular_params(m));
+    diffuse_support_ = support_of(diffuse_);
+    specular_support_ = support_of(specular_);
+    coeffs_cached_ = true;
+    cached_n_ = m.n;
+    cached_a_ = m.a.raw();
+    cached_b_ = m.b.raw();
+  }
+  const Support& diffuse_support = diffuse_support_;
+  const Support& specular_support = specular_support_;
 
   o_ = o_choice_ == OChoice::kPaper && !near_antipode(tri) ? kO : mean_normal(tri);
   Rotation rot[3];
   Unit eye[3];
   for (int i = 0; i < 3; ++i) {
-    rot[i] = rotation_to(tri.v[i].normal, o_);
+    rot[i] = rotation_of(tri.v[i].normal, o_);
     eye[i] = eye_direction(ctx, tri.v[i].eye);
   }
   q1_30 kd_colour[3];
   for (int c = 0; c < 3; ++c) kd_colour[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]);
-  for (const LightState& light : ctx.lights) {
+  for (std::size_t li = 0; li < kMaxLights; ++li) {
+    const LightState& light = ctx.lights[li];
     if (light.type == LightType::kOff) continue;
     Unit vd[3], vs[3];
     for (int i = 0; i < 3; ++i) {
       const Unit l = light_direction(light, tri.v[i].eye);
       vd[i] = rotate(rot[i], l);                       // Kuijk-Blake Figure 9
-      vs[i] = rotate(rot[i], halfway(l, eye[i]));
+      vs[i] = rotate(rot[i], halfway_of(li, l, eye[i]));
     }
     q1_30 wd[3], ws[3];
     for (int c = 0; c < 3; ++c) {

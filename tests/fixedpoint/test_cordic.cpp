@@ -71,3 +71,59 @@ TEST(Cordic, ToPolarMagnitudeExactCasesAndSaturation) {
   EXPECT_EQ(fx::to_polar(fx::q15_16::max(), fx::q15_16::max()).magnitude, fx::q15_16::max());
   EXPECT_EQ(fx::to_polar(fx::q15_16::min(), fx::q15_16::zero()).magnitude, fx::q15_16::max());
 }
+
+// The setup-grade variants (8 CORDIC steps + closed-form residual): max error over sweeps of
+// every quadrant and of tiny / huge arguments, in LSB of the output.
+TEST(CordicFast, Atan2AndSinCosMatchTheFullCordic) {
+  long double worst_atan = 0, worst_sin = 0, worst_cos = 0;
+  int differ = 0, total = 0;
+  std::uint64_t state = 12345;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::int32_t>(state >> 32);
+  };
+  for (int i = 0; i < 200000; ++i) {
+    std::int32_t y = next(), x = next();
+    const int sh = i % 31;  // also small magnitudes and very unequal components
+    if (i % 3 == 1) y >>= sh;
+    if (i % 3 == 2) x >>= sh;
+    const auto Y = fx::q1_30::from_raw(y), X = fx::q1_30::from_raw(x);
+    const fx::angle_t a = fx::atan2_fast(Y, X);
+    if (x == 0 && y == 0) {
+      EXPECT_EQ(a.raw(), 0);
+      continue;
+    }
+    worst_atan = std::max(worst_atan, std::fabs(err_lsb(a, std::atan2(static_cast<long double>(y),
+                                                                      static_cast<long double>(x)))));
+    differ += a.raw() != fx::atan2(Y, X).raw();
+    ++total;
+    const fx::angle_t t = fx::angle_t::from_raw(next());
+    const auto sc = fx::sin_cos_fast(t);
+    worst_sin = std::max(worst_sin, std::fabs(err_lsb(sc.sin, std::sin(to_ld(t)))));
+    worst_cos = std::max(worst_cos, std::fabs(err_lsb(sc.cos, std::cos(to_ld(t)))));
+  }
+  std::printf("atan2_fast max %.6Lf LSB (%d of %d differ from atan2); sin_cos_fast max sin %.6Lf, cos %.6Lf LSB\n",
+              worst_atan, differ, total, worst_sin, worst_cos);
+  EXPECT_LE(worst_atan, 0.506L);
+  EXPECT_LE(worst_sin, 0.506L);
+  EXPECT_LE(worst_cos, 0.506L);
+  EXPECT_EQ(fx::atan2_fast(fx::q1_30::zero(), fx::q1_30::one()).raw(), 0);
+  EXPECT_EQ(fx::atan2_fast(fx::q1_30::zero(), -fx::q1_30::one()), fx::angle_t::from_raw(tp::tables::pi_q2_29));
+}
+
+// sqrt's e = 0 path (isqrt_plain) gives exactly what the general digit-by-digit root gives.
+TEST(SqrtPlain, IdenticalToTheGeneralRoot) {
+  std::uint64_t state = 987654321;
+  for (int i = 0; i < 300000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const std::uint64_t u = i < 1000 ? static_cast<std::uint64_t>(i) : state >> (i % 40);
+    for (std::uint64_t limit : {std::uint64_t{1} << 31, std::uint64_t{1} << 20, ~std::uint64_t{0} >> 5}) {
+      const auto a = fx::detail::isqrt_plain(u, limit);
+      const auto b = fx::detail::isqrt_shifted(u, 0, limit);
+      ASSERT_EQ(a.over, b.over) << u;
+      if (a.over) continue;
+      ASSERT_EQ(a.root, b.root) << u;
+      ASSERT_EQ(a.round_up, b.round_up) << u;
+    }
+  }
+}
