@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   std::vector<Case> cases = arith_cases();
   for (auto& c : vec_cases()) cases.push_back(std::move(c));
   for (auto& c : trig_cases()) cases.push_back(std::move(c));
+  for (auto& c : trig_fast_cases()) cases.push_back(std::move(c));
   for (auto& c : quat_cases()) cases.push_back(std::move(c));
   std::printf("| function | inputs | n | max abs err (LSB) | mean abs err (LSB) | mean err (LSB) |\n");
   std::printf("|---|---|---:|---:|---:|---:|\n");

@@ -16,3 +16,16 @@ TEST(TrigAccuracy, AllCases) {
     EXPECT_LE(std::fabs(s.mean()), 0.035L) << c.name << " / " << c.inputs;
   }
 }
+
+// The setup-grade variants (atan2_fast, sin_cos_fast: 8 CORDIC steps and a closed-form
+// residual, used by firmware/kb). Measured by `build/release/bench/accuracy_fixedpoint` on
+// 2026-12-01: max |err| = 0.5049800 (sin_cos_fast, 32-bit set), 0.5030424 (atan2_fast, random
+// pairs); |mean| <= 0.0011. Pinned at 0.506 (margin 0.001 LSB) and 0.035 as above.
+TEST(TrigAccuracy, SetupGradeCases) {
+  for (const auto& c : tp::fx::testing::trig_fast_cases()) {
+    const auto s = c.run();
+    EXPECT_GT(s.n, 1000u) << c.name;
+    EXPECT_LE(s.max_abs, 0.506L) << c.name << " / " << c.inputs;
+    EXPECT_LE(std::fabs(s.mean()), 0.035L) << c.name << " / " << c.inputs;
+  }
+}
