@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 namespace tp::server {
 namespace {
 
@@ -41,7 +43,8 @@ std::string hex64(std::uint64_t v) {
 }
 
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
-                      std::span<const std::uint8_t> rgb, double render_ms) {
+                      std::span<const std::uint8_t> rgb, double render_ms,
+                      const Counters& counters) {
   auto f = std::make_shared<EncodedFrame>();
   f->kind = kind;
   f->id = id;
@@ -49,8 +52,14 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
   f->height = height;
   f->render_ms = render_ms;
   f->checksum = fnv1a64(rgb);
+  nlohmann::json c = nlohmann::json::object();
+  for (const auto& [k, v] : counters) c[k] = v;
+  std::string block = c.dump();
+  if (block.size() > kMaxCounterBytes) block = "{}";  // never: ~20 counters are ~600 bytes
+  f->counters = counters;
+  f->header_bytes = kHeaderBytes + block.size();
   std::string& b = f->bytes;
-  b.assign(kHeaderBytes + rgb.size(), '\0');
+  b.assign(f->header_bytes + rgb.size(), '\0');
   b[0] = 'T'; b[1] = 'P'; b[2] = 'F'; b[3] = 'B';
   put16(b, 4, kProtocolVersion);
   put16(b, 6, static_cast<std::uint16_t>(kind));
@@ -58,20 +67,33 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
   put16(b, 12, static_cast<std::uint16_t>(width));
   put16(b, 14, static_cast<std::uint16_t>(height));
   put16(b, 16, static_cast<std::uint16_t>(PixelFormat::rgb888));
-  put16(b, 18, static_cast<std::uint16_t>(kHeaderBytes));
+  put16(b, 18, static_cast<std::uint16_t>(f->header_bytes));
   const double us = std::clamp(render_ms * 1000.0, 0.0, 4.0e9);
   put32(b, 20, static_cast<std::uint32_t>(std::lround(us)));
   put64(b, 24, f->checksum);
   put32(b, 32, static_cast<std::uint32_t>(rgb.size()));
-  std::copy(rgb.begin(), rgb.end(), b.begin() + static_cast<std::ptrdiff_t>(kHeaderBytes));
+  put32(b, 36, static_cast<std::uint32_t>(block.size()));
+  std::copy(block.begin(), block.end(), b.begin() + static_cast<std::ptrdiff_t>(kHeaderBytes));
+  std::copy(rgb.begin(), rgb.end(), b.begin() + static_cast<std::ptrdiff_t>(f->header_bytes));
   return f;
 }
 
 bool decode_header(std::span<const std::uint8_t> m, EncodedFrame& out) {
   if (m.size() < kHeaderBytes || m[0] != 'T' || m[1] != 'P' || m[2] != 'F' || m[3] != 'B')
     return false;
-  if (get(m, 4, 2) != kProtocolVersion || get(m, 16, 2) != 1 || get(m, 18, 2) != kHeaderBytes)
+  const auto counter_bytes = get(m, 36, 4);
+  if (get(m, 4, 2) != kProtocolVersion || get(m, 16, 2) != 1 || counter_bytes > kMaxCounterBytes ||
+      get(m, 18, 2) != kHeaderBytes + counter_bytes || m.size() < kHeaderBytes + counter_bytes)
     return false;
+  out.header_bytes = static_cast<std::size_t>(kHeaderBytes + counter_bytes);
+  const auto block = m.subspan(kHeaderBytes, static_cast<std::size_t>(counter_bytes));
+  const auto parsed = nlohmann::json::parse(block.begin(), block.end(), nullptr, false);
+  if (!parsed.is_object()) return false;
+  out.counters.clear();
+  for (const auto& [k, v] : parsed.items()) {
+    if (!v.is_number_unsigned()) return false;
+    out.counters.emplace_back(k, v.get<std::uint64_t>());
+  }
   out.kind = static_cast<FrameKind>(get(m, 6, 2));
   out.id = static_cast<std::uint32_t>(get(m, 8, 4));
   out.width = static_cast<int>(get(m, 12, 2));
@@ -80,7 +102,7 @@ bool decode_header(std::span<const std::uint8_t> m, EncodedFrame& out) {
   out.checksum = get(m, 24, 8);
   const auto payload = get(m, 32, 4);
   const auto expect = static_cast<std::uint64_t>(out.width) * static_cast<std::uint64_t>(out.height) * 3;
-  return payload == expect && m.size() == kHeaderBytes + payload;
+  return payload == expect && m.size() == out.header_bytes + payload;
 }
 
 }  // namespace tp::server

@@ -1,19 +1,24 @@
 // Wire format of the binary frame messages (docs/SERVER.md, "Frame header").
-// Little-endian, 40-byte header followed by the raw pixels:
+// Little-endian, a 40-byte fixed header, the frame's device counters, then the raw pixels:
 //   0 magic "TPFB"   4 u16 version   6 u16 kind   8 u32 frame id   12 u16 width  14 u16 height
-//  16 u16 format    18 u16 header bytes  20 u32 render time (us)  24 u64 FNV-1a 64 of the pixels
-//  32 u32 payload bytes  36 u32 reserved (0)
+//  16 u16 format    18 u16 header bytes (40 + counter bytes)  20 u32 render time (us)
+//  24 u64 FNV-1a 64 of the pixels   32 u32 payload bytes   36 u32 counter bytes
+//  40 the counters of this frame as a compact JSON object {"name": value, ...} (UTF-8)
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tp::server {
 
-inline constexpr std::size_t kHeaderBytes = 40;
-inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::size_t kHeaderBytes = 40;  // the fixed part
+inline constexpr std::size_t kMaxCounterBytes = 16 * 1024;
+inline constexpr std::uint16_t kProtocolVersion = 2;
+
+using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
 
 enum class FrameKind : std::uint16_t { device = 0, reference = 1 };
 enum class PixelFormat : std::uint16_t { rgb888 = 1 };
@@ -30,12 +35,15 @@ struct EncodedFrame {
   int width = 0, height = 0;
   std::uint64_t checksum = 0;
   double render_ms = 0;
-  std::string bytes;  // header + pixels, ready for the WebSocket
+  Counters counters;           // the device's counters for this very frame
+  std::size_t header_bytes = kHeaderBytes;  // where the pixels start
+  std::string bytes;  // header + counters + pixels, ready for the WebSocket
 };
 using FramePtr = std::shared_ptr<const EncodedFrame>;
 
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
-                      std::span<const std::uint8_t> rgb, double render_ms);
+                      std::span<const std::uint8_t> rgb, double render_ms,
+                      const Counters& counters = {});
 
 // Parses a header (for tests and tools); false if the buffer is not a valid frame message.
 bool decode_header(std::span<const std::uint8_t> msg, EncodedFrame& out);

@@ -1,5 +1,5 @@
 // tinyphong viewer: plain JS, no build step (docs/SERVER.md explains why).
-// Protocol: binary frame messages (40-byte header + RGB888) and small JSON text messages.
+// Protocol: binary frame messages (40-byte header, the frame's counters as JSON, RGB888) and small JSON text messages.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
@@ -33,9 +33,16 @@ function parseHeader(buf) {
     width: v.getUint16(12, true), height: v.getUint16(14, true), format: v.getUint16(16, true),
     headerBytes: v.getUint16(18, true), renderUs: v.getUint32(20, true),
     checksum: v.getUint32(28, true).toString(16).padStart(8, '0') + v.getUint32(24, true).toString(16).padStart(8, '0'),
-    payload: v.getUint32(32, true),
+    payload: v.getUint32(32, true), counterBytes: v.getUint32(36, true),
   };
-  if (h.format !== 1 || h.payload !== h.width * h.height * 3 || buf.byteLength !== h.headerBytes + h.payload) return null;
+  if (h.format !== 1 || h.payload !== h.width * h.height * 3 || h.headerBytes !== 40 + h.counterBytes ||
+      buf.byteLength !== h.headerBytes + h.payload) return null;
+  // The device's counters for this very frame, a JSON object after the fixed 40 bytes.
+  try {
+    h.counters = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 40, h.counterBytes)));
+  } catch {
+    return null;
+  }
   h.rgb = new Uint8Array(buf, h.headerBytes, h.payload);
   return h;
 }
@@ -66,7 +73,9 @@ function onDevice(h) {
   const ctx = paint($('device'), h.width, h.height, h.rgb);
   // Prove what reached the screen: checksum of the canvas as painted, not of the message.
   const painted = fnv1a64Rgba(ctx.getImageData(0, 0, h.width, h.height).data);
-  tp.painted = { id: h.id, checksum: painted, sent: h.checksum, width: h.width, height: h.height };
+  tp.painted = { id: h.id, checksum: painted, sent: h.checksum, width: h.width, height: h.height,
+                 counters: h.counters };
+  showCounters(h.counters);
   tp.framesPainted++;
   ack(h.id, 'device');
   lastDevice = { id: h.id, width: h.width, height: h.height, rgb: h.rgb.slice() };
@@ -237,18 +246,22 @@ function renderLights(lights) {
   });
 }
 
+// The counters of the frame on screen (from its header, so they always match the image).
+function showCounters(counters) {
+  const body = $('counters').tBodies[0];
+  body.innerHTML = '';
+  for (const [k, v] of Object.entries(counters)) {
+    const tr = body.insertRow();
+    tr.insertCell().textContent = k;
+    tr.insertCell().textContent = v;
+  }
+}
+
 function applyStats(s) {
   tp.stats = s;
   $('fps').textContent = s.fps.toFixed(1);
   $('render-ms').textContent = s.render_ms.toFixed(2);
   $('clients').textContent = s.clients;
-  const body = $('counters').tBodies[0];
-  body.innerHTML = '';
-  for (const [k, v] of Object.entries(s.counters)) {
-    const tr = body.insertRow();
-    tr.insertCell().textContent = k;
-    tr.insertCell().textContent = v;
-  }
   const e = s.error;
   $('error').innerHTML = e
     ? `<b>vs reference</b> (frame ${e.frame_id}, ${e.pixels} px)<br>colour correctness ${e.correctness.toFixed(5)}<br>` +

@@ -83,6 +83,12 @@ try {
   check(a.painted.width === 320 && a.painted.height === 240, 'native size 320x240');
   const pixelsWritten = a.stats.counters.pixels_written ?? 0;
   check(pixelsWritten > 1000, `the device shaded the teapot (pixels_written ${pixelsWritten})`);
+  const own = a.painted.counters.pixels_written ?? 0;
+  check(own > 1000 && own === pixelsWritten,
+        `the frame header carried the frame's own counters (pixels_written ${own})`);
+  const shown = await page.evaluate(() => [...document.querySelectorAll('#counters tbody tr')]
+      .find((r) => r.cells[0].textContent === 'pixels_written')?.cells[1].textContent);
+  check(shown === String(own), `the page shows the painted frame's counters (${shown})`);
 
   // 2. Change the method from the page: the counters and the image change.
   const methods = a.state.methods;
@@ -94,6 +100,7 @@ try {
   check(b.painted.checksum === b.stats.frame.checksum, `after the switch, painted frame ${b.painted.id} matches the server's checksum`);
   check(b.painted.checksum !== a.painted.checksum, 'the image changed');
   check(JSON.stringify(b.stats.counters) !== JSON.stringify(a.stats.counters), 'the counters changed');
+  check(JSON.stringify(b.painted.counters) !== JSON.stringify(a.painted.counters), "the painted frame's counters changed");
 
   // 3. Reference comparison: a reference frame paired with the device frame, and error stats.
   await page.check('#reference');

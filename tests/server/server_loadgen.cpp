@@ -92,9 +92,10 @@ int main(int argc, char** argv) {
                 j["fps"].get<double>(), j["render_ms"].get<double>(), j["clients"].get<int>());
   }
   if (pid) std::printf("server RSS: %ld KiB before, %ld KiB max during\n", rss0, rss_max.load());
-  if (sample.size() > tp::server::kHeaderBytes) {
-    const auto* px = reinterpret_cast<const Bytef*>(sample.data() + tp::server::kHeaderBytes);
-    const uLong n = static_cast<uLong>(sample.size() - tp::server::kHeaderBytes);
+  tp::server::EncodedFrame header;
+  if (tp::server::decode_header({reinterpret_cast<const std::uint8_t*>(sample.data()), sample.size()}, header)) {
+    const auto* px = reinterpret_cast<const Bytef*>(sample.data() + header.header_bytes);
+    const uLong n = static_cast<uLong>(sample.size() - header.header_bytes);
     for (int level : {1, 6}) {
       std::vector<Bytef> out(compressBound(n));
       uLongf outn = static_cast<uLongf>(out.size());

@@ -27,22 +27,40 @@ TEST(Protocol, Fnv1a64KnownVectors) {
 TEST(Protocol, EncodeDecodeRoundTrip) {
   std::vector<std::uint8_t> rgb(5 * 3 * 3);
   for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<std::uint8_t>(i * 7);
-  auto f = encode_frame(FrameKind::reference, 77, 5, 3, rgb, 1.25);
-  ASSERT_EQ(f->bytes.size(), kHeaderBytes + rgb.size());
+  const Counters counters = {{"pixels_written", 15}, {"spans", 3}, {"frames", 1ULL << 40}};
+  auto f = encode_frame(FrameKind::reference, 77, 5, 3, rgb, 1.25, counters);
+  const std::string block = R"({"frames":1099511627776,"pixels_written":15,"spans":3})";
+  ASSERT_EQ(f->bytes.size(), kHeaderBytes + block.size() + rgb.size());
+  EXPECT_EQ(f->bytes.substr(kHeaderBytes, block.size()), block);
   EncodedFrame d;
   ASSERT_TRUE(decode_header(bytes(f->bytes), d));
+  EXPECT_EQ(d.header_bytes, kHeaderBytes + block.size());
+  const Counters sorted = {{"frames", 1ULL << 40}, {"pixels_written", 15}, {"spans", 3}};
+  EXPECT_EQ(d.counters, sorted);
   EXPECT_EQ(d.kind, FrameKind::reference);
   EXPECT_EQ(d.id, 77u);
   EXPECT_EQ(d.width, 5);
   EXPECT_EQ(d.height, 3);
   EXPECT_DOUBLE_EQ(d.render_ms, 1.25);
   EXPECT_EQ(d.checksum, fnv1a64(rgb));
-  EXPECT_EQ(std::string(f->bytes.begin() + kHeaderBytes, f->bytes.end()),
-            std::string(rgb.begin(), rgb.end()));
+  EXPECT_EQ(f->bytes.substr(d.header_bytes), std::string(rgb.begin(), rgb.end()));
   std::string bad = f->bytes;
   bad[0] = 'X';
   EXPECT_FALSE(decode_header(bytes(bad), d));
   EXPECT_FALSE(decode_header(bytes(f->bytes.substr(0, f->bytes.size() - 1)), d));
+  // A counter block that is not a JSON object of unsigned integers, or whose length disagrees
+  // with the header bytes, is not a frame.
+  std::string bad_block = f->bytes;
+  bad_block[kHeaderBytes + 1] = '[';
+  EXPECT_FALSE(decode_header(bytes(bad_block), d));
+  std::string bad_length = f->bytes;
+  bad_length[36] = static_cast<char>(bad_length[36] + 1);
+  EXPECT_FALSE(decode_header(bytes(bad_length), d));
+  // Without counters the block is "{}".
+  auto empty = encode_frame(FrameKind::device, 1, 5, 3, rgb, 0);
+  ASSERT_TRUE(decode_header(bytes(empty->bytes), d));
+  EXPECT_EQ(d.header_bytes, kHeaderBytes + 2);
+  EXPECT_TRUE(d.counters.empty());
 }
 
 TEST(Control, RejectsEachMalformedMessageByName) {
