@@ -145,6 +145,17 @@ constexpr QuadState seed(const CosnCoeffs& c, i64 theta, i64 dtheta, i64 s, int 
   return {C, A + B, 2 * A};
 }
 
+// seed(c, θ, dθ, s, piece).v alone (the value at θ; no dθ products): the same bits.
+constexpr i64 seed_value(const CosnCoeffs& c, i64 theta, i64 s, int piece) {
+  if (piece == 0 || piece == 4) return 0;
+  const bool inner = piece == 2;
+  const i64 centre = inner ? 0 : (piece == 1 ? -c.b : c.b);
+  const i64 e = theta - centre;
+  const i64 sk = mul_shr(s, inner ? c.k_in : c.k_out, 26);
+  const i64 C = mul_shr(mul_shr(sk, e, 29), e, 29);
+  return inner ? (s << (kStateFrac - 30)) - C : C;
+}
+
 }  // namespace fd_detail
 
 constexpr CosnCoeffs make_coeffs(CosnParams p) {

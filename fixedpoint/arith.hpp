@@ -28,6 +28,14 @@ constexpr u64 div_round_shifted(u64 n, u64 d, int s, u64 limit) {
     const u64 q = n / dd, r = n % dd;
     return r >= dd - r ? q + 1 : q;  // 2r >= dd without forming 2r
   }
+  // n * 2^s fits in 64 bits: one division gives the same floor and remainder as the long
+  // division below, hence the same rounding and saturation.
+  if (s < 64 && n <= (~u64{0} >> s)) {
+    const u64 ns = n << s;
+    const u64 q0 = ns / d, r0 = ns % d;
+    const u64 q1 = r0 >= d - r0 ? q0 + 1 : q0;
+    return q1 > limit ? limit + 1 : q1;
+  }
   // limit >> k for any k >= 0 (a shift by 64+ is undefined).
   const auto lim_shr = [limit](int k) { return k >= 63 ? u64{0} : limit >> k; };
   u64 q = n / d, r = n % d;

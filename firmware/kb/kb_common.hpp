@@ -80,12 +80,11 @@ inline cosn::CosnParams specular_params(const MaterialCmd& m) {
 }
 inline cosn::CosnParams diffuse_params() { return least_squares_params(1); }
 
-// f(θ) of one term at a single angle, in cosn's state format (one-pixel segment of the same
-// polynomial).
+// f(θ) of one term at a single angle, in cosn's state format: the value of the one-pixel
+// segment of the same polynomial (make_segments(c, θ, 0, 1, 1)[0].st.v, without building it).
 inline std::int64_t f_at(const cosn::CosnCoeffs& c, angle_t theta) {
-  cosn::CosnSegment seg[cosn::kMaxSegments];
-  (void)cosn::make_segments(c, theta, angle_t::zero(), q1_30::one(), 1, seg);
-  return seg[0].st.v;
+  return cosn::fd_detail::seed_value(c, theta.raw(), q1_30::one().raw(),
+                                     cosn::fd_detail::piece_of(theta.raw(), c.a, c.b));
 }
 
 // scale_c = weight_c · f (f in cosn's state format, <= 1), rounded into Q1.30: f is first

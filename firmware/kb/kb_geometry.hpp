@@ -295,19 +295,27 @@ struct SpanLine {
 
 // φ_first is wrapped into [−π, π] (φ_L + θ may reach 2π, beyond angle_t's range, when V
 // passes the point opposite S: f is even and 2π-periodic in that sense, cos φ being so).
-constexpr SpanLine span_line(const SpanCircle& c, xpos_t x_left, xpos_t x_right,
-                             xpos_t first_centre) {
-  SpanLine line{c.phi_left, dangle_t::zero()};
-  if (c.constant) return line;
+// φ_first alone (span_line's, without the dφ division).
+constexpr angle_t span_phi_first(const SpanCircle& c, xpos_t x_left, xpos_t x_right,
+                                 xpos_t first_centre) {
+  if (c.constant) return c.phi_left;
   const xpos_t width = fx::sub_sat(x_right, x_left);
-  if (width.raw() <= 0) return line;
+  if (width.raw() <= 0) return c.phi_left;
   // Fraction of the span width at the first centre, clamped to [0, 1] (a centre is inside).
   q1_30 frac = fx::div<q1_30>(fx::sub_sat(first_centre, x_left), width);
   if (frac.raw() < 0) frac = q1_30::zero();
   if (frac > q1_30::one()) frac = q1_30::one();
   const std::int64_t phi = std::int64_t{c.phi_left.raw()} +
                            fx::mul_sat<angle_t>(frac, c.theta).raw();  // < 2π + 1 LSB
-  line.phi_first = angle_t::from_raw_sat(wrap_pi(phi));
+  return angle_t::from_raw_sat(wrap_pi(phi));
+}
+
+constexpr SpanLine span_line(const SpanCircle& c, xpos_t x_left, xpos_t x_right,
+                             xpos_t first_centre) {
+  SpanLine line{span_phi_first(c, x_left, x_right, first_centre), dangle_t::zero()};
+  if (c.constant) return line;
+  const xpos_t width = fx::sub_sat(x_right, x_left);
+  if (width.raw() <= 0) return line;
   line.dphi = fx::div<dangle_t>(c.theta, width);
   return line;
 }

@@ -90,6 +90,29 @@ class KbOneVectorMethod final : public ShadingMethod {
     bool valid = false;
   };
   HalfwayMemo halfway_memo_[kMaxLights];
+  // Per vertex (normal, eye-space position, O, eye mode): the eye direction and, per light
+  // (keyed on its type, direction and position), the rotated vectors V of both terms. A vertex
+  // shared by neighbouring triangles is set up once while it stays in the memo.
+  struct VertexLight {
+    LightType type = LightType::kOff;
+    Vec3u direction{};
+    Vec3q16 position{};
+    Unit vd{}, vs{};
+    bool valid = false;
+  };
+  struct VertexMemo {
+    Unit n{}, o{};
+    Vec3q16 p{};
+    EyeMode eye = EyeMode::kInfinite;
+    Rotation r{};
+    Unit e{};
+    VertexLight light[kMaxLights];
+    bool valid = false;
+  };
+  static constexpr int kVertexMemo = 16;
+  VertexMemo vertex_memo_[kVertexMemo];
+  int vertex_next_ = 0;
+  VertexMemo& vertex_of(const ShadeVertex& v, const Unit& o, const ShadeContext& ctx);
   Rotation rotation_of(const Unit& n, const Unit& o);
   Unit halfway_of(std::size_t light, const Unit& l, const Unit& e);
   int terms_ = 0;

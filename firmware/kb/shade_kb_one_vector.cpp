@@ -112,6 +112,24 @@ Unit KbOneVectorMethod::halfway_of(std::size_t light, const Unit& l, const Unit&
   return m.h;
 }
 
+KbOneVectorMethod::VertexMemo& KbOneVectorMethod::vertex_of(const ShadeVertex& v,
+                                                            const Unit& o,
+                                                            const ShadeContext& ctx) {
+  for (VertexMemo& m : vertex_memo_)
+    if (m.valid && m.n == v.normal && m.o == o && m.p == v.eye && m.eye == ctx.eye) return m;
+  VertexMemo& m = vertex_memo_[vertex_next_];
+  vertex_next_ = (vertex_next_ + 1) % kVertexMemo;
+  m.n = v.normal;
+  m.o = o;
+  m.p = v.eye;
+  m.eye = ctx.eye;
+  m.r = rotation_of(v.normal, o);
+  m.e = eye_direction(ctx, v.eye);
+  for (VertexLight& l : m.light) l.valid = false;
+  m.valid = true;
+  return m;
+}
+
 bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   tri_ = &tri;
   counters_ = ctx.counters;
@@ -136,23 +154,36 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const Support& specular_support = specular_support_;
 
   o_ = o_choice_ == OChoice::kPaper && !near_antipode(tri) ? kO : mean_normal(tri);
-  Rotation rot[3];
-  Unit eye[3];
+  // V of both terms per light and vertex (one vertex's memo entry at a time: looking up the
+  // next vertex may evict it).
+  Unit vd_all[kMaxLights][3], vs_all[kMaxLights][3];
   for (int i = 0; i < 3; ++i) {
-    rot[i] = rotation_of(tri.v[i].normal, o_);
-    eye[i] = eye_direction(ctx, tri.v[i].eye);
+    VertexMemo& vm = vertex_of(tri.v[i], o_, ctx);
+    for (std::size_t li = 0; li < kMaxLights; ++li) {
+      const LightState& light = ctx.lights[li];
+      if (light.type == LightType::kOff) continue;
+      VertexLight& vl = vm.light[li];
+      if (!vl.valid || vl.type != light.type || !(vl.direction == light.direction) ||
+          !(vl.position == light.position)) {
+        const Unit l = light_direction(light, tri.v[i].eye);
+        vl.type = light.type;
+        vl.direction = light.direction;
+        vl.position = light.position;
+        vl.vd = rotate(vm.r, l);  // Kuijk-Blake Figure 9
+        vl.vs = rotate(vm.r, halfway_of(li, l, vm.e));
+        vl.valid = true;
+      }
+      vd_all[li][i] = vl.vd;
+      vs_all[li][i] = vl.vs;
+    }
   }
   q1_30 kd_colour[3];
   for (int c = 0; c < 3; ++c) kd_colour[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]);
   for (std::size_t li = 0; li < kMaxLights; ++li) {
     const LightState& light = ctx.lights[li];
     if (light.type == LightType::kOff) continue;
-    Unit vd[3], vs[3];
-    for (int i = 0; i < 3; ++i) {
-      const Unit l = light_direction(light, tri.v[i].eye);
-      vd[i] = rotate(rot[i], l);                       // Kuijk-Blake Figure 9
-      vs[i] = rotate(rot[i], halfway_of(li, l, eye[i]));
-    }
+    const Unit* vd = vd_all[li];
+    const Unit* vs = vs_all[li];
     q1_30 wd[3], ws[3];
     for (int c = 0; c < 3; ++c) {
       wd[c] = term_weight(light.color[c], kd_colour[c]);
@@ -299,9 +330,9 @@ void KbOneVectorMethod::add_exact_term(const OneVectorTerm& t, const Span& s) {
   c.phi_left = angle_t::from_raw(static_cast<std::int32_t>(p.phi_left));
   c.theta = p.theta;
   c.constant = p.rate == 0;
-  const SpanLine line = span_line(c, edge_x(*tri_, s.left), edge_x(*tri_, s.right),
-                                  pixel_centre(s.x0));
-  add_span_term(t, line.phi_first.raw(), p.rate, p.scale, s);
+  const angle_t phi_first = span_phi_first(c, edge_x(*tri_, s.left), edge_x(*tri_, s.right),
+                                           pixel_centre(s.x0));
+  add_span_term(t, phi_first.raw(), p.rate, p.scale, s);
 }
 
 void KbOneVectorMethod::prepare_span(const Span& s) {
