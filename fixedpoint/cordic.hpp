@@ -58,28 +58,40 @@ struct Vectored {
   wide_t x_scaled = 0;
   int shift = 0;
 };
-constexpr Vectored cordic_vectoring(wide_t y, wide_t x) {
-  Vectored v;
-  if (x == 0 && y == 0) return v;  // atan2(0, 0) = 0 by convention
-  // Scale so the larger component has its top bit at 2^58: the rotated vector grows by at most
-  // K * sqrt(2) < 2.33, staying below 2^61 (and round_shift_right's 2^62 limit).
+// Scales (x, y) so that the larger component has its top bit at 2^58 (the rotated vector grows
+// by at most K·√2 < 2.33, staying below 2^61 and round_shift_right's 2^62 limit), then rotates by
+// π into the right half-plane, where vectoring converges. Returns the scale shift; z gets ±π or 0.
+constexpr int prepare_vectoring(wide_t& x, wide_t& y, wide_t& z) {
   const u64 m = magnitude(x) > magnitude(y) ? magnitude(x) : magnitude(y);
-  v.shift = 59 - (64 - std::countl_zero(m));
-  if (v.shift >= 0) {
-    x *= wide_t{1} << v.shift;
-    y *= wide_t{1} << v.shift;
+  const int shift = 59 - (64 - std::countl_zero(m));
+  if (shift >= 0) {
+    x *= wide_t{1} << shift;
+    y *= wide_t{1} << shift;
   } else {
-    x = round_shift_right(x, -v.shift);
-    y = round_shift_right(y, -v.shift);
+    x = round_shift_right(x, -shift);
+    y = round_shift_right(y, -shift);
   }
-  wide_t z = 0;
-  if (x < 0) {  // rotate by π into the right half-plane, where vectoring converges
+  z = 0;
+  if (x < 0) {
     z = y >= 0 ? kPiQ60 : -kPiQ60;
     x = -x;
     y = -y;
   }
-  for (int i = 0; i < kCordicIterations; ++i) {
-    const wide_t xs = round_shift_right(x, i), ys = round_shift_right(y, i);
+  return shift;
+}
+
+// CORDIC steps 0 … n−1: vectoring drives y to zero (z collects the angle), rotation drives z to
+// zero (x, y turn by it). Rounded shifts for the full-precision functions; floor shifts (a bias
+// of 2^-60 per step) for the setup-grade ones, whose residual is finished in closed form.
+template <bool kRounded>
+constexpr wide_t step_shift(wide_t v, int i) {
+  if constexpr (kRounded) return round_shift_right(v, i);
+  else return v >> i;
+}
+template <bool kRounded>
+constexpr void vectoring_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
+  for (int i = 0; i < n; ++i) {
+    const wide_t xs = step_shift<kRounded>(x, i), ys = step_shift<kRounded>(y, i);
     const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
     if (y >= 0) {  // rotate clockwise: drive y to zero
       x += ys;
@@ -91,6 +103,44 @@ constexpr Vectored cordic_vectoring(wide_t y, wide_t x) {
       z -= a;
     }
   }
+}
+template <bool kRounded>
+constexpr void rotation_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
+  for (int i = 0; i < n; ++i) {
+    const wide_t xs = step_shift<kRounded>(x, i), ys = step_shift<kRounded>(y, i);
+    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+    if (z >= 0) {  // rotate counter-clockwise toward z = 0
+      x -= ys;
+      y += xs;
+      z -= a;
+    } else {
+      x += ys;
+      y -= xs;
+      z += a;
+    }
+  }
+}
+
+// An angle_t in Q60 (|z| <= 2^62) reduced to [−π/2, π/2] by ±π; true if it was (the rotated
+// vector is then negated).
+constexpr bool reduce_to_half_pi(wide_t& z) {
+  if (z > kHalfPiQ60) {
+    z -= kPiQ60;
+    return true;
+  }
+  if (z < -kHalfPiQ60) {
+    z += kPiQ60;
+    return true;
+  }
+  return false;
+}
+
+constexpr Vectored cordic_vectoring(wide_t y, wide_t x) {
+  Vectored v;
+  if (x == 0 && y == 0) return v;  // atan2(0, 0) = 0 by convention
+  wide_t z = 0;
+  v.shift = prepare_vectoring(x, y, z);
+  vectoring_steps<true>(x, y, z, kCordicIterations);
   v.angle_q60 = z;
   v.x_scaled = x;
   return v;
@@ -103,35 +153,9 @@ static_assert(kFastIterations == 8, "the residual bounds below assume 8 steps");
 // Returns the angle in Q60.
 constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
   if (x == 0 && y == 0) return 0;
-  // Largest component scaled to [2^58, 2^59): x grows by K_8·sqrt 2 < 2.33, below 2^61.
-  const u64 m = magnitude(x) > magnitude(y) ? magnitude(x) : magnitude(y);
-  const int shift = 59 - (64 - std::countl_zero(m));
-  if (shift >= 0) {
-    x *= wide_t{1} << shift;
-    y *= wide_t{1} << shift;
-  } else {
-    x = round_shift_right(x, -shift);
-    y = round_shift_right(y, -shift);
-  }
   wide_t z = 0;
-  if (x < 0) {
-    z = y >= 0 ? kPiQ60 : -kPiQ60;
-    x = -x;
-    y = -y;
-  }
-  for (int i = 0; i < kFastIterations; ++i) {
-    const wide_t xs = x >> i, ys = y >> i;  // floor shifts: a bias of 2^-60 per step
-    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
-    if (y >= 0) {
-      x += ys;
-      y -= xs;
-      z += a;
-    } else {
-      x -= ys;
-      y += xs;
-      z -= a;
-    }
-  }
+  prepare_vectoring(x, y, z);
+  vectoring_steps<false>(x, y, z, kFastIterations);
   // Now x in [2^58, 2^61) and the residual angle r = atan(t), t = |y|/x < tan(atan 2^-7)
   // (so |y| < 2^54). t in Q54 by two 64-bit divisions (x truncated to 2^-34 relative).
   const u64 ym = magnitude(y);
@@ -154,28 +178,9 @@ constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
 constexpr SinCos sin_cos_fast(angle_t theta) {
   using detail::wide_t;
   wide_t z = wide_t{theta.raw()} * (wide_t{1} << 31);
-  bool flip = false;
-  if (z > detail::kHalfPiQ60) {
-    z -= detail::kPiQ60;
-    flip = true;
-  } else if (z < -detail::kHalfPiQ60) {
-    z += detail::kPiQ60;
-    flip = true;
-  }
+  const bool flip = detail::reduce_to_half_pi(z);
   wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
-  for (int i = 0; i < detail::kFastIterations; ++i) {
-    const wide_t xs = x >> i, ys = y >> i;
-    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
-    if (z >= 0) {
-      x -= ys;
-      y += xs;
-      z -= a;
-    } else {
-      x += ys;
-      y -= xs;
-      z += a;
-    }
-  }
+  detail::rotation_steps<false>(x, y, z, detail::kFastIterations);
   // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
   const wide_t z30 = detail::round_shift_right(z, 30);      // |.| < 2^23
   const wide_t z2_60 = z30 * z30;                            // < 2^46
@@ -204,28 +209,9 @@ constexpr angle_t atan2_fast(T y, T x) {
 constexpr SinCos sin_cos(angle_t theta) {
   // angle_t raw * 2^31 -> Q60; |raw| <= 2^31 so |z| <= 2^62.
   detail::wide_t z = detail::wide_t{theta.raw()} * (detail::wide_t{1} << 31);
-  bool flip = false;
-  if (z > detail::kHalfPiQ60) {
-    z -= detail::kPiQ60;
-    flip = true;
-  } else if (z < -detail::kHalfPiQ60) {
-    z += detail::kPiQ60;
-    flip = true;
-  }
+  const bool flip = detail::reduce_to_half_pi(z);
   detail::wide_t x = tables::cordic_gain_inv_q60, y = 0;  // gain compensated up front
-  for (int i = 0; i < detail::kCordicIterations; ++i) {
-    const detail::wide_t xs = detail::round_shift_right(x, i), ys = detail::round_shift_right(y, i);
-    const detail::wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
-    if (z >= 0) {  // rotate counter-clockwise toward z = 0
-      x -= ys;
-      y += xs;
-      z -= a;
-    } else {
-      x += ys;
-      y -= xs;
-      z += a;
-    }
-  }
+  detail::rotation_steps<true>(x, y, z, detail::kCordicIterations);
   if (flip) {
     x = -x;
     y = -y;

@@ -80,6 +80,28 @@ inline cosn::CosnParams specular_params(const MaterialCmd& m) {
 }
 inline cosn::CosnParams diffuse_params() { return least_squares_params(1); }
 
+// The diffuse and specular cos^n coefficients of the current material. They depend on
+// (n, a, b) alone and cost four CORDIC calls to make, so consecutive triangles of one material
+// reuse them: refresh() remakes them only when (n, a, b) changed, and says so.
+struct MaterialCoeffs {
+  cosn::CosnCoeffs diffuse{}, specular{};
+  bool refresh(const MaterialCmd& m) {
+    if (made_ && n_ == m.n && a_ == m.a.raw() && b_ == m.b.raw()) return false;
+    diffuse = cosn::make_coeffs(diffuse_params());
+    specular = cosn::make_coeffs(specular_params(m));
+    made_ = true;
+    n_ = m.n;
+    a_ = m.a.raw();
+    b_ = m.b.raw();
+    return true;
+  }
+
+ private:
+  bool made_ = false;
+  std::uint32_t n_ = 0;
+  std::int32_t a_ = 0, b_ = 0;
+};
+
 // f(θ) of one term at a single angle, in cosn's state format: the value of the one-pixel
 // segment of the same polynomial (make_segments(c, θ, 0, 1, 1)[0].st.v, without building it).
 inline std::int64_t f_at(const cosn::CosnCoeffs& c, angle_t theta) {

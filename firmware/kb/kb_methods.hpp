@@ -68,13 +68,8 @@ class KbOneVectorMethod final : public ShadingMethod {
   const Triangle* tri_ = nullptr;
   Counters* counters_ = nullptr;
   Unit o_{};
-  cosn::CosnCoeffs diffuse_{}, specular_{};
-  Support diffuse_support_{}, specular_support_{};
-  // The material (n, a, b) the coefficients and supports above were made for: they depend on
-  // nothing else, so consecutive triangles of one material reuse them.
-  bool coeffs_cached_ = false;
-  std::uint32_t cached_n_ = 0;
-  std::int32_t cached_a_ = 0, cached_b_ = 0;
+  MaterialCoeffs coeffs_;
+  Support diffuse_support_{}, specular_support_{};  // made with coeffs_
   // Memos of pure per-vertex functions (exact: the same inputs give the same bits). Neighbouring
   // triangles share vertices, and a directional light with the eye at infinity has one H.
   struct RotationMemo {
@@ -150,13 +145,7 @@ class KbDecompositionMethod final : public ShadingMethod {
     const q1_30* weight = nullptr;
   };
   TwoVectorTriangle t_;
-  cosn::CosnCoeffs diffuse_{}, specular_{};
-  Support diffuse_support_{}, specular_support_{};
-  // The material (n, a, b) the coefficients and supports above were made for: they depend on
-  // nothing else, so consecutive triangles of one material reuse them.
-  bool coeffs_cached_ = false;
-  std::uint32_t cached_n_ = 0;
-  std::int32_t cached_a_ = 0, cached_b_ = 0;
+  MaterialCoeffs coeffs_;
   int terms_ = 0;
   Term term_[kMaxTerms];
 };

@@ -30,8 +30,7 @@ bool beyond_on_one_side(std::int64_t a, std::int64_t b, std::int64_t support) {
 
 bool KbDecompositionMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   t_.setup(tri, ctx);
-  diffuse_ = cosn::make_coeffs(diffuse_params());
-  specular_ = cosn::make_coeffs(specular_params(ctx.material));
+  coeffs_.refresh(ctx.material);
   return true;
 }
 
@@ -47,7 +46,7 @@ void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {
     const TwoVectorLight& light = t_.light[li];
     for (int k = 0; k < 2; ++k) {
       const bool spec = k == 1;
-      const cosn::CosnCoeffs& c = spec ? specular_ : diffuse_;
+      const cosn::CosnCoeffs& c = spec ? coeffs_.specular : coeffs_.diffuse;
       if (!c.valid) continue;
       const EdgeArcs& arcs = spec ? light.h : light.l;
       const Unit x_l = arcs.at(s.left), x_r = arcs.at(s.right);

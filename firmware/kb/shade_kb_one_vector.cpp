@@ -140,18 +140,10 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const MaterialCmd& m = ctx.material;
   for (int c = 0; c < 3; ++c) ambient_[c] = ambient_value(m.ka, m.color[c]);
   ambient_rgb_ = Rgb8{level_of(ambient_[0]), level_of(ambient_[1]), level_of(ambient_[2])};
-  if (!coeffs_cached_ || cached_n_ != m.n || cached_a_ != m.a.raw() || cached_b_ != m.b.raw()) {
-    diffuse_ = cosn::make_coeffs(diffuse_params());
-    specular_ = cosn::make_coeffs(specular_params(m));
-    diffuse_support_ = support_of(diffuse_);
-    specular_support_ = support_of(specular_);
-    coeffs_cached_ = true;
-    cached_n_ = m.n;
-    cached_a_ = m.a.raw();
-    cached_b_ = m.b.raw();
+  if (coeffs_.refresh(m)) {
+    diffuse_support_ = support_of(coeffs_.diffuse);
+    specular_support_ = support_of(coeffs_.specular);
   }
-  const Support& diffuse_support = diffuse_support_;
-  const Support& specular_support = specular_support_;
 
   o_ = o_choice_ == OChoice::kPaper && !near_antipode(tri) ? kO : mean_normal(tri);
   // V of both terms per light and vertex (one vertex's memo entry at a time: looking up the
@@ -189,8 +181,8 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
       wd[c] = term_weight(light.color[c], kd_colour[c]);
       ws[c] = term_weight(light.color[c], m.ks);
     }
-    if (diffuse_.valid) add_term(vd, diffuse_, diffuse_support, wd);
-    if (specular_.valid) add_term(vs, specular_, specular_support, ws);
+    if (coeffs_.diffuse.valid) add_term(vd, coeffs_.diffuse, diffuse_support_, wd);
+    if (coeffs_.specular.valid) add_term(vs, coeffs_.specular, specular_support_, ws);
   }
   return true;
 }
