@@ -45,13 +45,19 @@ std::string hex64(std::uint64_t v) {
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
                       std::span<const std::uint8_t> rgb, double render_ms,
                       const Counters& counters) {
+  return encode_frame(kind, id, width, height, rgb, render_ms, counters, fnv1a64(rgb));
+}
+
+FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
+                      std::span<const std::uint8_t> rgb, double render_ms,
+                      const Counters& counters, std::uint64_t checksum) {
   auto f = std::make_shared<EncodedFrame>();
   f->kind = kind;
   f->id = id;
   f->width = width;
   f->height = height;
   f->render_ms = render_ms;
-  f->checksum = fnv1a64(rgb);
+  f->checksum = checksum;
   nlohmann::json c = nlohmann::json::object();
   for (const auto& [k, v] : counters) c[k] = v;
   std::string block = c.dump();

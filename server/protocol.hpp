@@ -44,6 +44,11 @@ using FramePtr = std::shared_ptr<const EncodedFrame>;
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
                       std::span<const std::uint8_t> rgb, double render_ms,
                       const Counters& counters = {});
+// The same with the pixels' FNV-1a 64 already known (the render loop hashes every frame to
+// detect repeats; the hash is not computed twice).
+FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
+                      std::span<const std::uint8_t> rgb, double render_ms,
+                      const Counters& counters, std::uint64_t checksum);
 
 // Parses a header (for tests and tools); false if the buffer is not a valid frame message.
 bool decode_header(std::span<const std::uint8_t> msg, EncodedFrame& out);

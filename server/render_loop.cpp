@@ -142,7 +142,7 @@ void RenderLoop::render_and_publish(double rotation) {
   if (sum != last_checksum_ || img.width != last_w_ || img.height != last_h_) {
     const std::uint32_t id = next_id_++;
     hub_.publish_frame(encode_frame(FrameKind::device, id, img.width, img.height, img.rgb, f.render_ms,
-                                     f.counters));
+                                     f.counters, sum));
     last_checksum_ = sum;
     last_w_ = img.width;
     last_h_ = img.height;
