@@ -38,7 +38,8 @@ using namespace tp;
 using Clock = std::chrono::steady_clock;
 using kbbench::Frame;
 using kbbench::replay_frame;
-using kbbench::CoherenceTarget;
+using kbbench::CoherenceDiff;
+using kbbench::compare_coherent_with_exact;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -94,19 +95,10 @@ Split time_split(Frame& f, int reps) {
 }
 
 void coherence_row(const std::string& name, Frame& f) {
-  auto coherent = std::make_unique<fw::kb::KbOneVectorMethod>(true, true);
-  auto exact = std::make_unique<fw::kb::KbOneVectorMethod>(true, false);
-  auto target = std::make_unique<CoherenceTarget>();
-  target->coherent = coherent.get();
-  target->exact = exact.get();
-  for (const auto& t : f.tris) {
-    coherent->setup(t, f.ctx);
-    exact->setup(t, f.ctx);
-    fw::rasterize(t, f.width, f.height, *target);
-  }
-  std::printf("| %s | %lld | %lld (%.3f %%) | %.4f | %d |\n", name.c_str(), target->pixels,
-              target->differing, 100.0 * static_cast<double>(target->differing) / static_cast<double>(target->pixels),
-              static_cast<double>(target->sum) / static_cast<double>(target->pixels), target->max);
+  const CoherenceDiff d = compare_coherent_with_exact(f);
+  std::printf("| %s | %lld | %lld (%.3f %%) | %.4f | %d |\n", name.c_str(), d.pixels, d.differing,
+              100.0 * static_cast<double>(d.differing) / static_cast<double>(d.pixels),
+              static_cast<double>(d.sum) / static_cast<double>(d.pixels), d.max);
 }
 
 struct Errors {

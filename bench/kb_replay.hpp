@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <vector>
 
 #include "firmware/geometry.hpp"
@@ -86,5 +87,25 @@ struct CoherenceTarget final : fw::SpanTarget {
     }
   }
 };
+
+// The frame's triangles shaded by the coherent and by the exact span setup side by side: how
+// many pixels differ and by how much.
+struct CoherenceDiff {
+  long long pixels = 0, differing = 0, sum = 0;
+  int max = 0;
+};
+inline CoherenceDiff compare_coherent_with_exact(const Frame& f) {
+  auto coherent = std::make_unique<fw::kb::KbOneVectorMethod>(true, true);
+  auto exact = std::make_unique<fw::kb::KbOneVectorMethod>(true, false);
+  auto target = std::make_unique<CoherenceTarget>();
+  target->coherent = coherent.get();
+  target->exact = exact.get();
+  for (const auto& t : f.tris) {
+    coherent->setup(t, f.ctx);
+    exact->setup(t, f.ctx);
+    fw::rasterize(t, f.width, f.height, *target);
+  }
+  return {target->pixels, target->differing, target->sum, target->max};
+}
 
 }  // namespace tp::kbbench

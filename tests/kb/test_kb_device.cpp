@@ -232,21 +232,11 @@ TEST_P(KbCoherence, WithinOneLevelOfExactSetup) {
   device.set_scene(scene);
   (void)device.render(0.0);
   kbbench::Frame f = kbbench::replay_frame(device, scene);
-  auto coherent = std::make_unique<fw::kb::KbOneVectorMethod>(true, true);
-  auto exact = std::make_unique<fw::kb::KbOneVectorMethod>(true, false);
-  auto target = std::make_unique<kbbench::CoherenceTarget>();
-  target->coherent = coherent.get();
-  target->exact = exact.get();
-  for (const auto& t : f.tris) {
-    coherent->setup(t, f.ctx);
-    exact->setup(t, f.ctx);
-    fw::rasterize(t, f.width, f.height, *target);
-  }
-  std::printf("%s: %lld pixels, %lld differ, max %d\n", GetParam(), target->pixels,
-              target->differing, target->max);
-  EXPECT_GT(target->pixels, 50000);
-  EXPECT_LE(target->max, 1);
-  EXPECT_LE(static_cast<double>(target->differing), 0.03 * static_cast<double>(target->pixels));
+  const kbbench::CoherenceDiff d = kbbench::compare_coherent_with_exact(f);
+  std::printf("%s: %lld pixels, %lld differ, max %d\n", GetParam(), d.pixels, d.differing, d.max);
+  EXPECT_GT(d.pixels, 50000);
+  EXPECT_LE(d.max, 1);
+  EXPECT_LE(static_cast<double>(d.differing), 0.03 * static_cast<double>(d.pixels));
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperScenes, KbCoherence,
