@@ -28,6 +28,15 @@ struct Counters {
   std::uint64_t lights_skipped_triangle = 0;
   std::uint64_t lights_skipped_span = 0;
   std::uint64_t segments = 0;            // span segments (summed sections, Kuijk-Blake)
+  // kb-adaptive: triangles per path (kb_adaptive.hpp), sub-triangles, exact lattice samples.
+  std::uint64_t adaptive_constant = 0;   // one colour within the budget
+  std::uint64_t adaptive_linear = 0;     // a plane per channel within the budget
+  std::uint64_t adaptive_quadratic = 0;  // one quadratic per channel, all lights summed
+  std::uint64_t adaptive_subdivided = 0; // cut into 4^k sub-triangles with exact samples
+  std::uint64_t adaptive_exact = 0;      // small and over budget: exact at every pixel
+  std::uint64_t subtriangles = 0;        // sub-triangles of the subdivided triangles
+  std::uint64_t subtriangles_exact = 0;  // of those, evaluated per pixel (over budget at 4^4)
+  std::uint64_t lattice_samples = 0;     // exact Blinn-Phong samples (vertices, midpoints, checks)
   std::uint64_t frames = 0;              // end_frame calls since construction (not reset)
 };
 

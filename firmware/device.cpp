@@ -234,7 +234,9 @@ Error Device::set_method(Method m) {
   // Only implemented methods; the reserved ids of types.hpp are refused until they exist.
   if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong &&
       m != Method::kKuijkBlake && m != Method::kKuijkBlakeNoSkip &&
-      m != Method::kKuijkBlakeDecomposition && m != Method::kKuijkBlakeExact)
+      m != Method::kKuijkBlakeDecomposition && m != Method::kKuijkBlakeExact &&
+      m != Method::kKuijkBlakeAdaptive && m != Method::kKuijkBlakeAdaptiveNoSkip &&
+      m != Method::kKuijkBlakeAdaptiveExact)
     return fail(Error::kUnknownMethod);
   state_.method = m;
   return ok();
@@ -322,6 +324,9 @@ ShadingMethod& Device::method() {
     case Method::kKuijkBlakeNoSkip: return kb_no_skip_;
     case Method::kKuijkBlakeDecomposition: return kb_decomposition_;
     case Method::kKuijkBlakeExact: return kb_exact_;
+    case Method::kKuijkBlakeAdaptive: return kb_adaptive_;
+    case Method::kKuijkBlakeAdaptiveNoSkip: return kb_adaptive_no_skip_;
+    case Method::kKuijkBlakeAdaptiveExact: return kb_adaptive_exact_;
     default: return gouraud_;
   }
 }

@@ -27,6 +27,7 @@
 
 #include "firmware/counters.hpp"
 #include "firmware/geometry.hpp"
+#include "firmware/kb/kb_adaptive.hpp"
 #include "firmware/kb/kb_methods.hpp"
 #include "firmware/method.hpp"
 #include "firmware/methods.hpp"
@@ -152,6 +153,9 @@ class Device {
   kb::KbOneVectorMethod kb_no_skip_{false};
   kb::KbDecompositionMethod kb_decomposition_;
   kb::KbExactMethod kb_exact_;
+  kb::KbAdaptiveMethod kb_adaptive_{kb::AdaptiveMode::kAdaptive};
+  kb::KbAdaptiveMethod kb_adaptive_no_skip_{kb::AdaptiveMode::kNoSkip};
+  kb::KbAdaptiveMethod kb_adaptive_exact_{kb::AdaptiveMode::kExactOnly};
 };
 
 }  // namespace tp::fw

@@ -47,6 +47,9 @@ enum class Method : std::uint32_t {
   // 10: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
   kKuijkBlakeDecomposition = 11,  // Kuijk-Blake decomposition, eq. 2
   kKuijkBlakeExact = 12,          // Kuijk-Blake exact angular interpolation, eq. 1
+  kKuijkBlakeAdaptive = 13,       // per-triangle choice under an error budget (kb_adaptive.hpp)
+  kKuijkBlakeAdaptiveNoSkip = 14, // the same without skipping (verification: identical image)
+  kKuijkBlakeAdaptiveExact = 15,  // its exact evaluation at every pixel (the budget's reference)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

@@ -72,6 +72,12 @@ const std::vector<MethodName>& method_names() {
        "Kuijk-Blake decomposition (eq. 2): product of two forward-differenced f"},
       {"kb-exact", fw::Method::kKuijkBlakeExact,
        "Kuijk-Blake exact angular interpolation (eq. 1), per-pixel CORDIC"},
+      {"kb-adaptive", fw::Method::kKuijkBlakeAdaptive,
+       "Kuijk-Blake per triangle under a 1-level budget: quadratic, subdivision or per pixel"},
+      {"kb-adaptive-noskip", fw::Method::kKuijkBlakeAdaptiveNoSkip,
+       "kb-adaptive with every skip disabled (same image)"},
+      {"kb-adaptive-exact", fw::Method::kKuijkBlakeAdaptiveExact,
+       "kb-adaptive's exact evaluation at every pixel (the reference of its error budget)"},
   };
   return names;
 }
@@ -108,6 +114,14 @@ CounterSnapshot counter_snapshot(const fw::Counters& c) {
           {"lights_skipped_triangle", c.lights_skipped_triangle},
           {"lights_skipped_span", c.lights_skipped_span},
           {"segments", c.segments},
+          {"adaptive_constant", c.adaptive_constant},
+          {"adaptive_linear", c.adaptive_linear},
+          {"adaptive_quadratic", c.adaptive_quadratic},
+          {"adaptive_subdivided", c.adaptive_subdivided},
+          {"adaptive_exact", c.adaptive_exact},
+          {"subtriangles", c.subtriangles},
+          {"subtriangles_exact", c.subtriangles_exact},
+          {"lattice_samples", c.lattice_samples},
           {"frames", c.frames}};
 }
 

@@ -1,0 +1,124 @@
+// kb-adaptive (docs/KUIJK-BLAKE.md "kb-adaptive"): Kuijk-Blake shading that chooses, per
+// triangle and under an error budget, how to evaluate:
+//   constant / linear / quadratic — one screen-space quadratic per channel through exact samples
+//     at the vertices and edge midpoints, every light summed into it (two additions per channel
+//     per pixel, no per-span trigonometry), when its error estimate is within the budget;
+//   subdivision — where the quadratic misses, the cells that miss are split into four, down to
+//     4^4, with exact L, H and N at every new sample point, so that near point lights converge
+//     toward per-pixel Phong instead of failing as angular interpolation of L does;
+//   exact — per pixel, on triangles with fewer pixels than refining would take samples, and on
+//     deepest-level cells that still miss.
+// The exact evaluation (kb_sample.hpp) is Blinn-Phong at the perspective-correct point, and the
+// budget bounds the difference from it: every pixel of a cheap path within kBudgetLevels.
+//
+// The error estimate (docs/KUIJK-BLAKE.md): the quadratic is compared with exact values at the
+// nine other points of the quarter lattice (the children's samples, so refining reuses them), and
+// a highlight guard makes the samples dense enough, in angle, for any specular peak that may lie
+// on the cell (peak_level).
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/kb/kb_methods.hpp"
+#include "firmware/kb/kb_quadratic.hpp"
+#include "firmware/kb/kb_sample.hpp"
+#include "firmware/method.hpp"
+
+namespace tp::fw::kb {
+
+// The error budget: every pixel of a cheap path within 1 output level of the exact per-pixel
+// evaluation. The estimate (check points) must stay below it with a margin for what lies between
+// the check points: the worst case measured over 20,000 random triangles is in
+// tests/kb/test_kb_adaptive.cpp.
+inline constexpr std::int32_t kBudgetLevels = 1;
+inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.16
+inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
+// Over budget and at most this many pixels: exact per pixel (level 1 alone takes 30 more
+// samples than level 0, and each sample costs about what a pixel does).
+inline constexpr std::int64_t kExactAreaPixels = 48;
+inline constexpr std::int64_t kExactArea2 = kExactAreaPixels * 2 * 256;  // Triangle::area2 units
+inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
+inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
+
+// kAdaptive: the method. kNoSkip: the same choices, but constant triangles are stepped and every
+// light is evaluated everywhere (the image must not change: tested). kExactOnly: every pixel
+// exact — the reference the budget is measured against (tests, docs).
+enum class AdaptiveMode : std::uint8_t { kAdaptive, kNoSkip, kExactOnly };
+
+class KbAdaptiveMethod final : public ShadingMethod {
+ public:
+  enum class Path : std::uint8_t { kConstant, kLinear, kQuadratic, kSubdivided, kExact };
+  explicit KbAdaptiveMethod(AdaptiveMode mode = AdaptiveMode::kAdaptive) : mode_(mode) {}
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+  Path path() const { return path_; }
+  int level() const { return level_; }
+  // The exact evaluation at pixel (x, y) of the current triangle: what the per-pixel path
+  // writes and what the cheap paths are held to (tests).
+  Rgb8 exact_at(std::int32_t x, std::int32_t y) const;
+
+ // A cell of the subdivision: level L has 4^L cells, "up" (i, j) with i + j <= 2^L − 1 and
+  // "down" (i, j) with i + j <= 2^L − 2, in units of 2^-L of the barycentrics (λ1, λ2).
+  struct Cell {
+    int level = 0, i = 0, j = 0;
+    bool up = true;
+  };
+
+ private:
+  static constexpr Cell kWhole{0, 0, 0, true};
+  // A leaf of the subdivision: its cell and quadratics, or exact (over budget at the deepest
+  // level: evaluated per pixel).
+  struct Leaf {
+    Cell cell;
+    SteppedQuadratic q[3];
+    bool exact = false;
+    bool in_range = false;  // the quadratics stay inside [0, 255]: no clamp per pixel
+  };
+  static constexpr int kMaxLeaves = 1 << (2 * kMaxLevel);
+  struct Lattice {
+    std::int32_t value[kLatticePoints][3];  // levels, Q.16, before the output clamp
+    std::uint32_t stamp[kLatticePoints];    // == generation: evaluated for this triangle
+    std::uint32_t generation = 0;
+  };
+  static constexpr int index(int a, int b) {
+    return b * (kLatticeRes + 1) - b * (b - 1) / 2 + a;
+  }
+  const std::int32_t* lattice_at(int la, int lb);
+  Samples6 samples_of(const Cell& c, int ch) const;
+  std::int64_t check_error(const Cell& c);
+  void refine(const Cell& c, bool guarded);
+  void mark(const Cell& c, std::uint16_t leaf);
+  void choose_cheap_path();
+  int peak_level(const Cell& c);
+  void add_leaf(const Cell& c, bool quadratic);
+  Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
+  std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
+  void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
+  void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n, Rgb8* out) const;
+  void fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u, std::int64_t v,
+                      std::int32_t n, Rgb8* out) const;
+
+  AdaptiveMode mode_;
+  PointShader point_;
+  const Triangle* tri_ = nullptr;
+  const ShadeContext* ctx_ = nullptr;
+  Counters* counters_ = nullptr;
+  Path path_ = Path::kConstant;
+  int level_ = 0;
+  Rgb8 constant_{0, 0, 0};
+  SteppedQuadratic whole_[3];  // level 0: the triangle's quadratic per channel
+  bool whole_in_range_ = false;
+  std::int64_t du_ = 0, dv_ = 0;    // per pixel: dλ1/dx, dλ2/dx in Q.30
+  std::int64_t de1_ = 0, de2_ = 0;  // per pixel: dE1, dE2 (exact edge-function steps)
+  // The leaves of the subdivision, and the leaf holding each deepest-level cell.
+  Leaf leaves_[kMaxLeaves];
+  int leaf_count_ = 0;
+  std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel];
+  std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel];
+  std::uint32_t omega_n_ = 0;  // the exponent omega_ was made for
+  std::int64_t omega_ = 0;     // 0.6/√n in Q.30 rad (peak_level)
+  Lattice lattice_;
+};
+
+}  // namespace tp::fw::kb

@@ -1,0 +1,129 @@
+// The quadratic of kb-adaptive's cheap path (docs/KUIJK-BLAKE.md "kb-adaptive"): a colour
+// channel given by six exact samples on a (sub-)triangle, vertices A, B, C and edge midpoints
+// AB, BC, CA, is interpolated by the unique quadratic through them (Lagrange on the six-point
+// lattice; Vlasic's eq. 4.2 in the barycentric form) and stepped along a span by forward
+// differencing: two additions per channel per pixel, whatever the number of lights.
+//
+// Local coordinates: (u, v) with A at (0, 0), B at (1, 0), C at (0, 1); λ_A = 1 − u − v.
+//   q(u, v) = g_A + c_u u + c_v v + c_uu u² + c_vv v² + c_uv u v, with
+//   c_u = 4 g_AB − 3 g_A − g_B,   c_uu = 2 g_A + 2 g_B − 4 g_AB   (and the same for v with C, CA)
+//   c_uv = 4 (g_A − g_AB − g_CA + g_BC)
+// (substitution: q(1, 0) = g_B, q(½, 0) = g_AB, q(½, ½) = g_BC, …; tests/kb/test_kb_quadratic.cpp).
+//
+// Formats: samples are 8-bit output levels in Q.16 (|g| < 2^25, unclamped: kb_sample.hpp); the span state is levels in
+// Q.40 (kStateFrac), so that 4,096 steps of a rounded second difference stay far below 1/256 of
+// a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/cosn_fd.hpp"
+#include "firmware/types.hpp"
+#include "fixedpoint/q.hpp"
+
+namespace tp::fw::kb {
+
+inline constexpr int kSampleFrac = 16;  // sample values: levels, Q.16
+inline constexpr int kQuadStateFrac = 40;  // forward-differencing state: levels, Q.40
+using local_t = fx::Q<32, 30, std::int64_t>;  // u, v, du, dv
+
+// The six samples of one channel, in the order A, B, C, AB, BC, CA.
+struct Samples6 {
+  std::int32_t g[6];
+};
+
+struct LocalQuadratic {
+  std::int64_t c0 = 0, cu = 0, cv = 0, cuu = 0, cvv = 0, cuv = 0;  // levels, Q.16
+};
+
+constexpr LocalQuadratic fit_quadratic(const Samples6& s) {
+  const std::int64_t a = s.g[0], b = s.g[1], c = s.g[2], ab = s.g[3], bc = s.g[4], ca = s.g[5];
+  return LocalQuadratic{a,
+                        4 * ab - 3 * a - b,
+                        4 * ca - 3 * a - c,
+                        2 * a + 2 * b - 4 * ab,
+                        2 * a + 2 * c - 4 * ca,
+                        4 * (a - ab - ca + bc)};
+}
+
+// 8 × q at the quarter-lattice point (qu/4, qv/4), qu + qv <= 4, exactly in integers: the
+// Lagrange basis there is λ(2λ − 1) at the vertices (×8: 0, −1, 0, 3, 8 for λ = 0, ¼, ½, ¾, 1)
+// and 4 λ_i λ_j at the midpoints (×8: 2 k_i k_j for λ = k/4).
+constexpr std::int64_t quadratic_x8_at(const Samples6& s, int qu, int qv) {
+  constexpr std::int64_t vertex_weight[5] = {0, -1, 0, 3, 8};
+  const int ka = 4 - qu - qv, kb = qu, kc = qv;
+  return vertex_weight[ka] * s.g[0] + vertex_weight[kb] * s.g[1] + vertex_weight[kc] * s.g[2] +
+         2 * ka * kb * std::int64_t{s.g[3]} + 2 * kb * kc * std::int64_t{s.g[4]} +
+         2 * kc * ka * std::int64_t{s.g[5]};
+}
+
+// The nine points of the quarter lattice that are not samples: where kb-adaptive checks the
+// quadratic against exact values (they are the samples of the next subdivision level).
+struct QuarterPoint {
+  int qu, qv;
+};
+inline constexpr QuarterPoint kCheckPoints[9] = {{1, 0}, {3, 0}, {0, 1}, {0, 3}, {3, 1},
+                                                 {1, 3}, {1, 1}, {2, 1}, {1, 2}};
+
+// Forward-differencing state of one channel along a span piece.
+struct QuadStep {
+  std::int64_t v = 0, d1 = 0, d2 = 0;  // levels, Q.40
+};
+
+// A cell's quadratic prepared for stepping with fixed per-pixel steps (du, dv): the value is the
+// quadratic itself, the first difference q(u + du, v + dv) − q(u, v) is linear in (u, v),
+//   d1 = e0 + e_u u + e_v v,  e0 = c_u du + c_v dv + c_uu du² + c_vv dv² + c_uv du dv,
+//   e_u = 2 c_uu du + c_uv dv,  e_v = 2 c_vv dv + c_uv du,
+// and the second difference d2 = 2 (c_uu du² + c_vv dv² + c_uv du dv) is constant. e0 and d2
+// are formed once per cell with the steps' full precision (Q.16 × Q.60 in 128 bits).
+// Bounds: |c| < 2^29 (|g| < 2^25); |u|, |v| <= 1 + 2^-20 at a pixel of the piece, and |du|, |dv|
+// < 1 + 2^-20 when the piece has two pixels or more (both lie in the cell); steps are clamped
+// to ±2 (a one-pixel piece never uses them), so every product below stays under 2^62.
+struct SteppedQuadratic {
+  LocalQuadratic q;
+  std::int64_t e0 = 0, eu = 0, ev = 0, d2 = 0;  // e0, d2: Q.40; eu, ev: Q.46 (× Q.30 -> Q.76)
+};
+
+inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, std::int64_t dv) {
+  using cosn::fd_detail::mul_shr;
+  constexpr std::int64_t kTwo = std::int64_t{2} << 30;
+  du = du > kTwo ? kTwo : (du < -kTwo ? -kTwo : du);
+  dv = dv > kTwo ? kTwo : (dv < -kTwo ? -kTwo : dv);
+  SteppedQuadratic s;
+  s.q = q;
+  const std::int64_t du2 = du * du, dv2 = dv * dv, dudv = du * dv;  // Q.60, <= 2^62
+  const std::int64_t curve = mul_shr(q.cuu, du2, 36) + mul_shr(q.cvv, dv2, 36) + mul_shr(q.cuv, dudv, 36);
+  s.d2 = 2 * curve;
+  s.e0 = mul_shr(q.cu, du, 6) + mul_shr(q.cv, dv, 6) + curve;  // Q.16 × Q.30 -> Q.40
+  s.eu = 2 * q.cuu * du + q.cuv * dv;  // Q.46
+  s.ev = 2 * q.cvv * dv + q.cuv * du;
+  return s;
+}
+
+// The state at local (u, v) (Q.30). With steps = false (a one-pixel piece) only the value.
+inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, bool steps) {
+  using cosn::fd_detail::mul_shr;
+  constexpr int kToState = kQuadStateFrac - kSampleFrac;    // 24
+  constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.16 -> Q.40: >> 6
+  const LocalQuadratic& q = s.q;
+  const auto sq30 = [](std::int64_t a, std::int64_t b) {
+    return fx::detail::round_shift_right(a * b, 30);
+  };
+  QuadStep st;
+  st.v = (q.c0 << kToState) +
+         fx::detail::round_shift_right(q.cu * u + q.cv * v + q.cuu * sq30(u, u) +
+                                           q.cvv * sq30(v, v) + q.cuv * sq30(u, v),
+                                       kProd);
+  if (!steps) return st;
+  st.d1 = s.e0 + mul_shr(s.eu, u, 36) + mul_shr(s.ev, v, 36);  // Q.46 × Q.30 -> Q.40
+  st.d2 = s.d2;
+  return st;
+}
+
+// Output level of a state value: round, clamp to [0, 255].
+constexpr std::uint8_t quad_level(std::int64_t v) {
+  const std::int64_t l = (v + (std::int64_t{1} << (kQuadStateFrac - 1))) >> kQuadStateFrac;
+  return static_cast<std::uint8_t>(l < 0 ? 0 : (l > 255 ? 255 : l));
+}
+
+}  // namespace tp::fw::kb

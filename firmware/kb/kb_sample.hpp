@@ -1,0 +1,189 @@
+// kb-adaptive's exact evaluation at a point of a triangle: the samples its quadratics are fitted
+// to, and its per-pixel path. The same Blinn-Phong as firmware/lighting.hpp (specular not gated
+// by N·L, Ia = 1) at the perspective-correct point: normal and eye-space position interpolated
+// with hyperbolic barycentrics, the normal renormalised, L, the eye direction and H exact there
+// (so that near point lights are right), with the sample-grade normalize_fast (2.8·10^-9 per
+// component; fixedpoint/normalize_fast.hpp) instead of normalize's four 128-bit Newton steps.
+// The result is the 8-bit output level in Q.16 before the output's clamp to [0, 255].
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "firmware/lighting.hpp"
+#include "firmware/interp.hpp"
+#include "firmware/method.hpp"
+#include "fixedpoint/arith.hpp"
+#include "fixedpoint/normalize_fast.hpp"
+
+namespace tp::fw::kb {
+
+class PointShader {
+ public:
+  static constexpr int kFrac = 16;  // output: levels, Q.16
+
+  // skipping = false evaluates every light at every point, also where it adds exactly 0.
+  void setup(const Triangle& tri, const ShadeContext& ctx, bool skipping = true) {
+    tri_ = &tri;
+    skipping_ = skipping;
+    ctx_ = &ctx;
+    q15_16 wmin = tri.v[0].w;
+    for (const ShadeVertex& v : tri.v) wmin = v.w < wmin ? v.w : wmin;
+    for (int i = 0; i < 3; ++i) r_[i] = fx::div<q1_30>(wmin, tri.v[i].w).raw();
+    const MaterialCmd& m = ctx.material;
+    for (int c = 0; c < 3; ++c) {
+      ambient_[c] = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
+      diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]);
+    }
+    lights_ = 0;
+    for (std::size_t i = 0; i < kMaxLights; ++i) {
+      const LightState& l = ctx.lights[i];
+      if (l.type == LightType::kOff) continue;
+      const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
+      if (skipping && dark) continue;  // adds exactly 0
+      // A directional light seen from an eye at infinity has one H everywhere.
+      fixed_h_[lights_] = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;
+      if (fixed_h_[lights_])
+        h_[lights_] = fx::normalize_fast(std::int64_t{l.direction.x.raw()},
+                                         std::int64_t{l.direction.y.raw()},
+                                         std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
+      light_[lights_++] = &l;
+    }
+  }
+
+  // The geometry at a point: normal, eye direction and eye-space position (Q.46).
+  struct Point {
+    Vec3u normal, eye;
+    std::int64_t p[3] = {0, 0, 0};
+    bool inside = false;
+  };
+
+  // The point whose screen-space barycentric weights are k0 : k1 : k2 (any common scale, each
+  // >= 0 and < 2^62, sum > 0).
+  Point point(std::int64_t k0, std::int64_t k1, std::int64_t k2) const {
+    const Triangle& t = *tri_;
+    Point pt;
+    k0 = k0 < 0 ? 0 : k0;  // on an edge the exact weight is 0; never below
+    k1 = k1 < 0 ? 0 : k1;
+    k2 = k2 < 0 ? 0 : k2;
+    const int sh = shift_for(k0 | k1 | k2);
+    std::int64_t mu[3] = {(k0 >> sh) * r_[0], (k1 >> sh) * r_[1], (k2 >> sh) * r_[2]};
+    std::int64_t sum = mu[0] + mu[1] + mu[2];
+    if (sum == 0) return pt;  // not inside the triangle
+    // b_i = mu_i / sum by one reciprocal: the weights scaled so that sum is in [2^30, 2^31)
+    // (exactly when shifted up, rounding 2^-31 relative when shifted down), inv = 2^61 / sum
+    // in (2^30, 2^31], b_i = mu_i·inv / 2^31 in Q1.30 (relative error < 2^-29).
+    const int bw = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(sum)));
+    for (std::int64_t& m : mu) m = bw > 31 ? m >> (bw - 31) : m << (31 - bw);
+    sum = bw > 31 ? sum >> (bw - 31) : sum << (31 - bw);
+    const std::int64_t inv = (std::int64_t{1} << 61) / sum;
+    std::int64_t n[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+      if (mu[i] == 0) continue;
+      const std::int64_t w = (mu[i] * inv) >> 31;
+      n[0] += w * t.v[i].normal.x.raw();
+      n[1] += w * t.v[i].normal.y.raw();
+      n[2] += w * t.v[i].normal.z.raw();
+      pt.p[0] += w * t.v[i].eye.x.raw();
+      pt.p[1] += w * t.v[i].eye.y.raw();
+      pt.p[2] += w * t.v[i].eye.z.raw();
+    }
+    // n: Q.60, p: eye-space position in Q.46 (|p| < 2^60).
+    pt.normal = fx::normalize_fast(n[0], n[1], n[2]);
+    pt.eye = Vec3u{q1_30::zero(), q1_30::zero(), q1_30::one()};
+    if (ctx_->eye == EyeMode::kFinite) pt.eye = fx::normalize_fast(-pt.p[0], -pt.p[1], -pt.p[2]);
+    pt.inside = true;
+    return pt;
+  }
+
+  int lights() const { return lights_; }
+  const LightState& light(int i) const { return *light_[i]; }
+
+  // L toward light i from the point, and the halfway vector H = normalize(L + E).
+  Vec3u light_direction(const Point& pt, int i) const {
+    const LightState& l = *light_[i];
+    if (l.type != LightType::kPoint) return l.direction;
+    return fx::normalize_fast((std::int64_t{l.position.x.raw()} << 30) - pt.p[0],
+                              (std::int64_t{l.position.y.raw()} << 30) - pt.p[1],
+                              (std::int64_t{l.position.z.raw()} << 30) - pt.p[2]);
+  }
+  Vec3u halfway(const Point& pt, int i, const Vec3u& lv) const {
+    return fixed_h_[i] ? h_[i] : halfway(pt, lv);
+  }
+  static Vec3u halfway(const Point& pt, const Vec3u& lv) {
+    return fx::normalize_fast(std::int64_t{lv.x.raw()} + pt.eye.x.raw(),
+                              std::int64_t{lv.y.raw()} + pt.eye.y.raw(),
+                              std::int64_t{lv.z.raw()} + pt.eye.z.raw());
+  }
+
+  // The level (Q.16, before the output clamp) of each channel at the point.
+  void shade(const Point& pt, std::int32_t out[3]) const {
+    std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
+    if (pt.inside) {
+      const MaterialCmd& m = ctx_->material;
+      for (int li = 0; li < lights_; ++li) {
+        const LightState& l = *light_[li];
+        const Vec3u lv = light_direction(pt, li);
+        const Vec3u h = halfway(pt, li, lv);
+        const q1_30 ndl = positive(fx::dot<q1_30>(pt.normal, lv));
+        const q1_30 ndh = positive(fx::dot<q1_30>(pt.normal, h));
+        if (skipping_ && ndl.raw() == 0 && ndh.raw() == 0) continue;  // adds exactly 0
+        const std::int64_t spec = unit_mul(m.ks.raw(), unit_power(ndh.raw(), m.n));
+        for (int c = 0; c < 3; ++c) {
+          const std::int64_t term = std::int64_t{fx::mul_sat<q1_30>(diffuse_[c], ndl).raw()} + spec;
+          acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
+  }
+
+  void at(std::int64_t k0, std::int64_t k1, std::int64_t k2, std::int32_t out[3]) const {
+    shade(point(k0, k1, k2), out);
+  }
+
+ private:
+  static q1_30 positive(q1_30 x) { return x.raw() < 0 ? q1_30::zero() : x; }
+  // Products of Q1.30 values in [0, 1], rounded half up: the same bits as fx::mul_sat (whose
+  // ties-away rounding is half up for non-negative values, and which never saturates here).
+  static std::int64_t unit_mul(std::int64_t a, std::int64_t b) {
+    return (a * b + (std::int64_t{1} << 29)) >> 30;
+  }
+  // x^n by repeated squaring, each product rounded: the same bits as lighting.hpp's power().
+  static std::int64_t unit_power(std::int64_t x, std::uint32_t n) {
+    std::int64_t result = std::int64_t{1} << 30, base = x;
+    while (n != 0) {
+      if ((n & 1u) != 0) result = unit_mul(result, base);
+      n >>= 1;
+      if (n != 0) base = unit_mul(base, base);
+    }
+    return result;
+  }
+  // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
+  static int shift_for(std::int64_t bits) {
+    const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
+    return w > 28 ? w - 28 : 0;
+  }
+  // Q.30 radiance -> level in Q.16, NOT clamped to [0, 255]: the output clamps per pixel, so
+  // that a quadratic fitted to these samples meets no kink where the colour saturates. Kept in
+  // [−255, 510] (|g| < 2^25, the bound kb_quadratic.hpp's products assume); beyond it the
+  // output is black or saturated either way.
+  static std::int32_t level_of(std::int64_t i_q30) {
+    constexpr std::int64_t lo = -(std::int64_t{1} << 30), hi = std::int64_t{2} << 30;
+    const std::int64_t v = i_q30 < lo ? lo : (i_q30 > hi ? hi : i_q30);
+    return static_cast<std::int32_t>(fx::detail::round_shift_right(v * 255, 30 - kFrac));
+  }
+
+  const Triangle* tri_ = nullptr;
+  const ShadeContext* ctx_ = nullptr;
+  bool skipping_ = true;
+  std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
+  std::int64_t ambient_[3] = {0, 0, 0};
+  q1_30 diffuse_[3];
+  const LightState* light_[kMaxLights] = {};
+  bool fixed_h_[kMaxLights] = {};
+  Vec3u h_[kMaxLights];
+  int lights_ = 0;
+};
+
+}  // namespace tp::fw::kb

@@ -1,0 +1,495 @@
+// kb-adaptive: per triangle, the cheapest evaluation that stays within the error budget
+// (kb_adaptive.hpp; the derivation and the measurements are in docs/KUIJK-BLAKE.md,
+// "kb-adaptive").
+//
+// Setup: the highlight guard (peak_level), exact samples on the triangle's quarter lattice (the
+// six points of the quadratic and the nine check points), then
+//   1. the quadratic passes its check → constant, linear or quadratic, the simplest whose added
+//      error keeps the estimate within the budget;
+//   2. else, a small triangle (fewer pixels than the samples refining would take) → per pixel;
+//   3. else subdivision: each cell that fails its check is split into four, down to 4^4 cells,
+//      reusing its check points as the children's samples; a deepest cell that still fails is
+//      evaluated per pixel.
+// Span: the pieces of the span in each leaf cell, each seeded once and forward-differenced.
+#include "firmware/kb/kb_adaptive.hpp"
+
+#include "firmware/interp.hpp"
+#include "firmware/lighting.hpp"
+#include "firmware/raster.hpp"
+#include "firmware/vecmath.hpp"
+
+namespace tp::fw::kb {
+namespace {
+
+std::int64_t abs64(std::int64_t v) { return v < 0 ? -v : v; }
+
+// Pixels until q (now in [lo, hi)) leaves that interval when it moves by dq per pixel.
+std::int64_t steps_inside(std::int64_t q, std::int64_t dq, std::int64_t lo, std::int64_t hi) {
+  constexpr std::int64_t kForever = std::int64_t{1} << 40;
+  if (dq > 0) return ceil_div(hi - q, dq);
+  if (dq < 0) return floor_div(q - lo, -dq) + 1;
+  return kForever;
+}
+
+// A quadratic's largest departure from its value at A over the triangle (u, v >= 0,
+// u + v <= 1): |c_u| + |c_v| + |c_uu| + |c_vv| + |c_uv| bounds it.
+std::int64_t spread_bound(const LocalQuadratic& q) {
+  return abs64(q.cu) + abs64(q.cv) + abs64(q.cuu) + abs64(q.cvv) + abs64(q.cuv);
+}
+
+// The linear interpolant through the vertices differs from the quadratic by
+// c_uu (u² − u) + c_vv (v² − v) + c_uv u v, at most (|c_uu| + |c_vv| + |c_uv|) / 4.
+std::int64_t curvature_bound(const LocalQuadratic& q) {
+  return (abs64(q.cuu) + abs64(q.cvv) + abs64(q.cuv) + 3) / 4;
+}
+
+// Whether a cell's quadratic stays inside [0, 255.5) levels — then the pixel loop needs no
+// clamp: over the cell it lies within (|c_uu| + |c_vv| + |c_uv|) / 4 of the plane through its
+// vertex values (curvature_bound), plus a level of margin for the stepping's rounding.
+bool inside_levels(const LocalQuadratic& q, const Samples6& s) {
+  std::int64_t lo = s.g[0], hi = s.g[0];
+  for (int k = 1; k < 3; ++k) {
+    lo = s.g[k] < lo ? s.g[k] : lo;
+    hi = s.g[k] > hi ? s.g[k] : hi;
+  }
+  const std::int64_t slack = curvature_bound(q) + (std::int64_t{1} << kSampleFrac);
+  return lo - slack >= 0 && hi + slack < (std::int64_t{255} << kSampleFrac);
+}
+
+LocalQuadratic linear_of(const LocalQuadratic& q) {
+  return LocalQuadratic{q.c0, q.cu + q.cuu, q.cv + q.cvv, 0, 0, 0};
+}
+
+// Samples of the quarter lattice of level k: (4·2^k + 1)(4·2^k + 2) / 2.
+std::int64_t lattice_samples_at(int k) {
+  const std::int64_t r = std::int64_t{4} << k;
+  return (r + 1) * (r + 2) / 2;
+}
+
+// The angle (Q.30 rad) of a cosine c (Q1.30), from t = 1 − c: acos c = √(2t)·(1 + t/12 +
+// 3t²/160 + …), the series cut after three terms (low by 0.8 % at 90°, by 21 % at 180°).
+std::int64_t angle_of(std::int64_t c) {
+  constexpr std::int64_t one = std::int64_t{1} << 30;
+  const std::int64_t t = one - (c > one ? one : (c < -one ? -one : c));  // [0, 2], Q.30
+  using Q60 = fx::Q<2, 60, std::int64_t>;
+  const std::int64_t two_t = 2 * t < 4 * one ? 2 * t : 4 * one - 1;
+  const std::int64_t root = fx::sqrt<q1_30>(Q60::from_raw(two_t << 30)).raw();  // √(2t), Q.30
+  const std::int64_t series = one + t / 12 + ((3 * ((t * t) >> 30)) / 160);
+  return (root * series) >> 30;
+}
+
+// Cap of three unit vectors: its centre and the cosine of its radius (the largest angle from
+// the centre to one of them).
+struct Cap {
+  Vec3u centre;
+  std::int64_t cos_radius = 0;
+};
+Cap cap_of(const Vec3u v[3]) {
+  Cap c;
+  c.centre = fx::normalize_fast(std::int64_t{v[0].x.raw()} + v[1].x.raw() + v[2].x.raw(),
+                                std::int64_t{v[0].y.raw()} + v[1].y.raw() + v[2].y.raw(),
+                                std::int64_t{v[0].z.raw()} + v[1].z.raw() + v[2].z.raw());
+  c.cos_radius = std::int64_t{1} << 30;
+  for (int i = 0; i < 3; ++i) {
+    const std::int64_t d = fx::dot<q1_30>(c.centre, v[i]).raw();
+    if (d < c.cos_radius) c.cos_radius = d;
+  }
+  return c;
+}
+
+}  // namespace
+
+// The value at lattice point (la, lb) of the deepest quarter lattice, evaluated on first use in
+// this triangle (every cell's points lie on it; neighbouring cells share theirs).
+const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
+  const int i = index(la, lb);
+  if (lattice_.stamp[i] != lattice_.generation) {
+    point_.at(kLatticeRes - la - lb, la, lb, lattice_.value[i]);
+    lattice_.stamp[i] = lattice_.generation;
+    ++counters_->lattice_samples;
+  }
+  return lattice_.value[i];
+}
+
+// Lattice coordinates of quarter point (qu, qv) of a cell: kLatticeRes / (4·2^level) lattice
+// steps per quarter, from the cell's A vertex (an "up" cell (i, j) has A = (i, j), B = A + (1, 0),
+// C = A + (0, 1) in units of the level; a "down" cell A = (i + 1, j + 1), B = A − (1, 0),
+// C = A − (0, 1)).
+namespace {
+void cell_point(const KbAdaptiveMethod::Cell& c, int qu, int qv, int& la, int& lb) {
+  const int st = kLatticeRes >> (c.level + 2);
+  la = c.up ? (4 * c.i + qu) * st : (4 * (c.i + 1) - qu) * st;
+  lb = c.up ? (4 * c.j + qv) * st : (4 * (c.j + 1) - qv) * st;
+}
+}  // namespace
+
+// The six samples of a cell, channel ch (already evaluated: the cell was checked).
+Samples6 KbAdaptiveMethod::samples_of(const Cell& cell, int ch) const {
+  const auto at = [&](int qu, int qv) {
+    int a = 0, b = 0;
+    cell_point(cell, qu, qv, a, b);
+    return lattice_.value[index(a, b)][ch];
+  };
+  return Samples6{{at(0, 0), at(4, 0), at(0, 4), at(2, 0), at(2, 2), at(0, 2)}};
+}
+
+// The error estimate: max over channels and the nine check points of |g − q|, Q.16 levels
+// (rounded up). Evaluates the cell's fifteen points where needed.
+std::int64_t KbAdaptiveMethod::check_error(const Cell& cell) {
+  const int qs[15][2] = {{0, 0}, {4, 0}, {0, 4}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {3, 0},
+                         {0, 1}, {0, 3}, {3, 1}, {1, 3}, {1, 1}, {2, 1}, {1, 2}};
+  const std::int32_t* v[15];
+  for (int k = 0; k < 15; ++k) {
+    int a = 0, b = 0;
+    cell_point(cell, qs[k][0], qs[k][1], a, b);
+    v[k] = lattice_at(a, b);
+  }
+  std::int64_t worst = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    const Samples6 s{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}};
+    for (int k = 0; k < 9; ++k) {
+      const QuarterPoint& p = kCheckPoints[k];
+      const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - quadratic_x8_at(s, p.qu, p.qv));
+      if (e > worst) worst = e;
+    }
+  }
+  return (worst + 7) / 8;
+}
+
+// The four children of a cell at the next level (midpoint subdivision; the middle child has the
+// other orientation).
+namespace {
+void children_of(const KbAdaptiveMethod::Cell& c, KbAdaptiveMethod::Cell out[4]) {
+  const int l = c.level + 1, i = 2 * c.i, j = 2 * c.j;
+  if (c.up) {
+    out[0] = {l, i, j, true};
+    out[1] = {l, i + 1, j, true};
+    out[2] = {l, i, j + 1, true};
+    out[3] = {l, i, j, false};
+  } else {
+    out[0] = {l, i + 1, j + 1, false};
+    out[1] = {l, i, j + 1, false};
+    out[2] = {l, i + 1, j, false};
+    out[3] = {l, i + 1, j + 1, true};
+  }
+}
+}  // namespace
+
+// Records leaf number `leaf` for every deepest-level cell inside `c`.
+void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
+  if (c.level == kMaxLevel) {
+    (c.up ? leaf_up_ : leaf_down_)[c.j][c.i] = leaf;
+    return;
+  }
+  Cell kids[4];
+  children_of(c, kids);
+  for (const Cell& k : kids) mark(k, leaf);
+}
+
+// Makes c a leaf: its quadratics, or per-pixel evaluation.
+void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
+  ++counters_->subtriangles;
+  if (!quadratic) ++counters_->subtriangles_exact;
+  Leaf& leaf = leaves_[leaf_count_];
+  leaf.cell = c;
+  leaf.exact = !quadratic;
+  if (quadratic) {
+    // Steps in the cell's own coordinates: 2^level times the triangle's, reversed in a "down"
+    // cell (its u, v run from the opposite corner).
+    const std::int64_t scale = c.up ? std::int64_t{1} << c.level : -(std::int64_t{1} << c.level);
+    leaf.in_range = true;
+    for (int ch = 0; ch < 3; ++ch) {
+      const Samples6 samples = samples_of(c, ch);
+      const LocalQuadratic q = fit_quadratic(samples);
+      leaf.q[ch] = prepare_steps(q, du_ * scale, dv_ * scale);
+      leaf.in_range = leaf.in_range && inside_levels(q, samples);
+    }
+  }
+  mark(c, static_cast<std::uint16_t>(leaf_count_++));
+}
+
+// A cell is a leaf once its samples are dense enough for the highlights (peak_level, checked
+// while `guarded`: a cell that passes guarantees it for its descendants) and its check passes; at
+// the deepest level a cell that fails either is evaluated per pixel.
+void KbAdaptiveMethod::refine(const Cell& c, bool guarded) {
+  if (guarded && peak_level(c) == c.level) guarded = false;
+  if (!guarded || c.level == kMaxLevel) {
+    const bool passes = !guarded && check_error(c) <= kEstimateBudget;
+    if (passes || c.level == kMaxLevel) {
+      add_leaf(c, passes);
+      return;
+    }
+  }
+  Cell kids[4];
+  children_of(c, kids);
+  for (const Cell& k : kids) refine(k, guarded);
+}
+
+// Level 0 passed: the simplest of constant, linear and quadratic within the budget.
+void KbAdaptiveMethod::choose_cheap_path() {
+  const std::int64_t err0 = check_error(kWhole);
+  bool constant = true, linear = true;
+  LocalQuadratic q[3];
+  whole_in_range_ = true;
+  for (int c = 0; c < 3; ++c) {
+    const Samples6 samples = samples_of(kWhole, c);
+    q[c] = fit_quadratic(samples);
+    const LocalQuadratic lin = linear_of(q[c]);
+    constant = constant && err0 + curvature_bound(q[c]) + spread_bound(lin) <= kEstimateBudget;
+    linear = linear && err0 + curvature_bound(q[c]) <= kEstimateBudget;
+  }
+  if (constant) {
+    path_ = Path::kConstant;
+    ++counters_->adaptive_constant;
+    for (LocalQuadratic& c : q) c = LocalQuadratic{c.c0, 0, 0, 0, 0, 0};
+    whole_in_range_ = false;  // (filled, or stepped with the clamp by the no-skip variant)
+    const auto level = [](std::int64_t g) { return quad_level(g << (kQuadStateFrac - kSampleFrac)); };
+    constant_ = Rgb8{level(q[0].c0), level(q[1].c0), level(q[2].c0)};
+  } else if (linear) {
+    path_ = Path::kLinear;
+    ++counters_->adaptive_linear;
+    for (LocalQuadratic& c : q) c = linear_of(c);
+  } else {
+    path_ = Path::kQuadratic;
+    ++counters_->adaptive_quadratic;
+  }
+  if (path_ != Path::kConstant)
+    for (int c = 0; c < 3; ++c)
+      whole_in_range_ = whole_in_range_ && inside_levels(q[c], samples_of(kWhole, c));
+  for (int c = 0; c < 3; ++c) whole_[c] = prepare_steps(q[c], du_, dv_);
+}
+
+// The level that cell c's descendants must reach for their samples to see every highlight peak
+// that may lie on c (c.level itself when none can). N over the cell stays in the cap of the
+// normals at its vertices (radius r_N) and H in the cap of its vertices' H (r_H; the central
+// projection of a planar patch from a point light or the eye keeps L and E in the caps of their
+// vertex values). A specular peak, where N = H, can lie on the cell only if the caps' centres
+// are less than r_N + r_H apart; then the sample spacing, about (r_N + r_H) / 2^k in angle, must
+// stay within ω = 0.6/√n, where cos^n has fallen to 0.83 of its peak, so that the check points
+// see the peak's curvature instead of it passing between samples (docs/KUIJK-BLAKE.md).
+int KbAdaptiveMethod::peak_level(const Cell& c) {
+  const MaterialCmd& m = ctx_->material;
+  if (m.ks.raw() == 0 || point_.lights() == 0) return c.level;
+  if (omega_n_ != m.n) {
+    // ω = 0.6 / √n in Q.30: 0.6·2^45 / (√n·2^15).
+    omega_n_ = m.n;
+    const auto root = fx::detail::isqrt_plain(std::uint64_t{m.n} << 30, std::uint64_t{1} << 40).root;
+    omega_ = static_cast<std::int64_t>(21110623253299ULL / (root == 0 ? 1 : root));
+  }
+  PointShader::Point pt[3];
+  Vec3u normals[3];
+  const int corner[3][2] = {{0, 0}, {4, 0}, {0, 4}};
+  for (int v = 0; v < 3; ++v) {
+    int la = 0, lb = 0;
+    cell_point(c, corner[v][0], corner[v][1], la, lb);
+    pt[v] = point_.point(kLatticeRes - la - lb, la, lb);
+    normals[v] = pt[v].normal;
+  }
+  const Cap n_cap = cap_of(normals);
+  const std::int64_t r_n = angle_of(n_cap.cos_radius);
+  int level = c.level;
+  for (int li = 0; li < point_.lights(); ++li) {
+    const LightState& l = point_.light(li);
+    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    Vec3u h[3];
+    for (int v = 0; v < 3; ++v) h[v] = point_.halfway(pt[v], li, point_.light_direction(pt[v], li));
+    const Cap h_cap = cap_of(h);
+    // Radii over-estimated by 1/16, the centre distance under-estimated by 1/16 (the series).
+    const std::int64_t reach = (r_n + angle_of(h_cap.cos_radius)) * 17 / 16;
+    const std::int64_t apart = angle_of(fx::dot<q1_30>(n_cap.centre, h_cap.centre).raw()) * 15 / 16;
+    if (apart - reach >= omega_) continue;  // no peak on the cell
+    int k = c.level;
+    while (k <= kMaxLevel && (reach >> (k - c.level)) > omega_) ++k;
+    if (k > level) level = k;
+  }
+  return level;
+}
+
+bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
+  tri_ = &tri;
+  ctx_ = &ctx;
+  counters_ = ctx.counters;
+  level_ = 0;
+  if (++lattice_.generation == 0) {  // wrapped: forget every stamp
+    for (std::uint32_t& st : lattice_.stamp) st = 0;
+    lattice_.generation = 1;
+  }
+  point_.setup(tri, ctx, mode_ == AdaptiveMode::kAdaptive);
+  const Lambdas step = lambdas_step_x(tri);
+  de1_ = step.l[1];
+  de2_ = step.l[2];
+  // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
+  du_ = fx::div<local_t>(I62::from_raw(de1_), I62::from_raw(tri.area2)).raw();
+  dv_ = fx::div<local_t>(I62::from_raw(de2_), I62::from_raw(tri.area2)).raw();
+
+  if (mode_ == AdaptiveMode::kExactOnly) {
+    path_ = Path::kExact;
+    ++counters_->adaptive_exact;
+    return true;
+  }
+  const int guard = peak_level(kWhole);
+  const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
+  if (guard == 0 && err0 <= kEstimateBudget) {
+    choose_cheap_path();
+  } else {
+    // The cost of refining, guessed from the guard and from the h³ law of quadratic
+    // interpolation (each halving of the size divides the error by 8) applied to err0,
+    // against the pixels: a small triangle is cheaper per pixel.
+    int k = guard > 1 ? (guard > kMaxLevel ? kMaxLevel : guard) : 1;
+    if (guard == 0)
+      while (k < kMaxLevel && (err0 >> (3 * k)) > kEstimateBudget) ++k;
+    const std::int64_t pixels = tri.area2 / (2 * 256);
+    if (pixels <= lattice_samples_at(k)) {
+      path_ = Path::kExact;
+      ++counters_->adaptive_exact;
+      return true;
+    }
+    path_ = Path::kSubdivided;
+    ++counters_->adaptive_subdivided;
+    level_ = kMaxLevel;
+    leaf_count_ = 0;
+    refine(kWhole, guard > 0);
+  }
+  return true;
+}
+
+void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u,
+                                      std::int64_t v, std::int32_t n, Rgb8* out) const {
+  const QuadStep r = seed_quadratic(q[0], u, v, n > 1);
+  const QuadStep g = seed_quadratic(q[1], u, v, n > 1);
+  const QuadStep b = seed_quadratic(q[2], u, v, n > 1);
+  std::int64_t rv = r.v, rd = r.d1, gv = g.v, gd = g.d1, bv = b.v, bd = b.d1;
+  if (in_range) {
+    // Every value of the cell's quadratics is inside [0, 255.5): rounding alone.
+    constexpr std::int64_t half = std::int64_t{1} << (kQuadStateFrac - 1);
+    for (std::int32_t x = 0; x < n; ++x) {
+      out[x] = Rgb8{static_cast<std::uint8_t>((rv + half) >> kQuadStateFrac),
+                    static_cast<std::uint8_t>((gv + half) >> kQuadStateFrac),
+                    static_cast<std::uint8_t>((bv + half) >> kQuadStateFrac)};
+      rv += rd;  // forward differences: two additions per channel
+      rd += r.d2;
+      gv += gd;
+      gd += g.d2;
+      bv += bd;
+      bd += b.d2;
+    }
+    return;
+  }
+  for (std::int32_t x = 0; x < n; ++x) {
+    out[x] = Rgb8{quad_level(rv), quad_level(gv), quad_level(bv)};
+    rv += rd;
+    rd += r.d2;
+    gv += gd;
+    gd += g.d2;
+    bv += bd;
+    bd += b.d2;
+  }
+}
+
+// The cell of `level` that holds the point with edge weights e1, e2 (λ1 = e1 / area2, …):
+// i <= s < i + 1, j <= t < j + 1 for s = 2^level·λ1, t = 2^level·λ2, "up" below the diagonal
+// s + t = i + j + 1. Points on the triangle's own edges are clamped into it.
+KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1, std::int64_t e2) const {
+  const std::int64_t area = tri_->area2, cells = std::int64_t{1} << level;
+  const std::int64_t s = e1 << level, t = e2 << level;
+  std::int64_t i = floor_div(s, area), j = floor_div(t, area);
+  i = i < 0 ? 0 : (i > cells - 1 ? cells - 1 : i);
+  j = j < 0 ? 0 : (j > cells - 1 - i ? cells - 1 - i : j);
+  const bool up = s + t < (i + j + 1) * area || i + j == cells - 1;
+  return Cell{level, static_cast<int>(i), static_cast<int>(j), up};
+}
+
+// Pixels until the point (e1, e2), stepping by (de1_, de2_), leaves cell c.
+std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const {
+  const std::int64_t area = tri_->area2;
+  const std::int64_t s = e1 << c.level, t = e2 << c.level;
+  const std::int64_t ds = de1_ << c.level, dt = de2_ << c.level;
+  std::int64_t len = steps_inside(s, ds, c.i * area, (c.i + 1) * area);
+  const std::int64_t lt = steps_inside(t, dt, c.j * area, (c.j + 1) * area);
+  len = lt < len ? lt : len;
+  const std::int64_t diag = (c.i + c.j + 1) * area, dd = ds + dt;
+  if (c.up && dd > 0) {
+    const std::int64_t ld = ceil_div(diag - s - t, dd);
+    len = ld < len ? ld : len;
+  }
+  if (!c.up && dd < 0) {
+    const std::int64_t ld = floor_div(s + t - diag, -dd) + 1;
+    len = ld < len ? ld : len;
+  }
+  return len < 1 ? 1 : len;
+}
+
+// Pixels [xa, xa + n) of row y inside cell c, from edge weights (e1, e2) at xa: the cell's
+// quadratic, seeded once and forward-differenced.
+void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2,
+                                  std::int32_t n, Rgb8* out) const {
+  const Cell& c = leaf.cell;
+  const std::int64_t area = tri_->area2;
+  const std::int64_t s = e1 << c.level, t = e2 << c.level;
+  const std::int64_t nu = c.up ? s - c.i * area : (c.i + 1) * area - s;
+  const std::int64_t nv = c.up ? t - c.j * area : (c.j + 1) * area - t;
+  const std::int64_t u = fx::div<local_t>(I62::from_raw(nu), I62::from_raw(area)).raw();
+  const std::int64_t v = fx::div<local_t>(I62::from_raw(nv), I62::from_raw(area)).raw();
+  fill_quadratic(leaf.q, leaf.in_range, u, v, n, out);
+}
+
+Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {
+  Rgb8 px;
+  shade_exact(y, x, 1, &px);
+  return px;
+}
+
+// Per pixel: the exact evaluation at every pixel centre of [xa, xa + n) in row y.
+void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
+  Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
+  const Lambdas step = lambdas_step_x(*tri_);
+  for (std::int32_t x = 0; x < n; ++x) {
+    std::int32_t g[3];
+    point_.at(lam.l[0], lam.l[1], lam.l[2], g);
+    const auto level = [](std::int32_t v) {
+      return quad_level(std::int64_t{v} << (kQuadStateFrac - kSampleFrac));
+    };
+    out[x] = Rgb8{level(g[0]), level(g[1]), level(g[2])};
+    for (int i = 0; i < 3; ++i) lam.l[i] += step.l[i];
+  }
+  counters_->specular_evaluations += static_cast<std::uint64_t>(n);
+}
+
+void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
+  if (path_ == Path::kExact) {
+    shade_exact(s.y, s.x0, s.x1 - s.x0, out);
+    return;
+  }
+  const std::int32_t n = s.x1 - s.x0;
+  if (path_ == Path::kConstant && mode_ == AdaptiveMode::kAdaptive) {  // every pixel the same
+    for (std::int32_t x = 0; x < n; ++x) out[x] = constant_;
+    return;
+  }
+  const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
+  const std::int64_t area = tri_->area2;
+  if (level_ == 0) {
+    const std::int64_t u = fx::div<local_t>(I62::from_raw(lam.l[1]), I62::from_raw(area)).raw();
+    const std::int64_t v = fx::div<local_t>(I62::from_raw(lam.l[2]), I62::from_raw(area)).raw();
+    fill_quadratic(whole_, whole_in_range_, u, v, n, out);
+    return;
+  }
+  // Subdivided: each piece of the span lies in one leaf cell (found through the deepest level's
+  // map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
+  std::int64_t e1 = lam.l[1], e2 = lam.l[2];
+  for (std::int32_t x = 0; x < n;) {
+    const Cell finest = cell_at(kMaxLevel, e1, e2);
+    const Leaf& leaf = leaves_[(finest.up ? leaf_up_ : leaf_down_)[finest.j][finest.i]];
+    std::int64_t len = pixels_in(leaf.cell, e1, e2);
+    if (len > n - x) len = n - x;
+    const auto run = static_cast<std::int32_t>(len);
+    if (leaf.exact)
+      shade_exact(s.y, s.x0 + x, run, out + x);
+    else
+      shade_cell(leaf, e1, e2, run, out + x);
+    e1 += len * de1_;
+    e2 += len * de2_;
+    x += run;
+  }
+}
+
+}  // namespace tp::fw::kb

@@ -1,0 +1,72 @@
+// Sample-grade normalisation: the direction of a 64-bit integer vector as a Q1.30 unit vector,
+// in about 40 integer instructions (normalize() takes ~250: four Newton steps in 128 bits).
+//
+//   normalize_fast(x, y, z)  components of any common scale (only the direction matters);
+//                            the zero vector gives the zero vector.
+//
+// How: the components are cut to 30 bits (as firmware/vecmath.hpp's normalize_wide does), the
+// squared length s (exact, < 3·2^60) is brought to t = s·2^-e in [2^30, 2^32) with e even, and
+// 1/sqrt(t / 2^32) in (1, 2] is taken from a 192-entry seed (Q2.30, relative error < 2^-9)
+// and two Newton steps r' = r (3 − T r²) / 2 in 64-bit products (error < 2^-28 after them).
+// Precondition: |x|, |y|, |z| < 2^62.
+// Measured against normalize() over 1,000,000 random vectors (tests/fixedpoint/test_vec3.cpp,
+// NormalizeFast): at most 3 LSB of Q1.30 per component (2.8·10^-9), pinned at 4.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstdint>
+
+#include "fixedpoint/q.hpp"
+#include "fixedpoint/sqrt.hpp"
+#include "fixedpoint/vec3.hpp"
+
+namespace tp::fx {
+
+namespace detail {
+
+// round(2^30 / sqrt((i + 64.5) / 256)) for the 192 intervals of T = t / 2^32 in [1/4, 1).
+inline constexpr std::array<std::uint32_t, 192> rsqrt_fast_seed = [] {
+  std::array<std::uint32_t, 192> s{};
+  for (int i = 0; i < 192; ++i) {
+    // 2^30 · sqrt(512 / (2i + 129)) = sqrt(2^69 / (2i + 129)), by the exact integer root.
+    const u64 radicand = (u64{1} << 63) / static_cast<u64>(2 * i + 129);  // 2^69 / d · 2^-6
+    const RootResult r = isqrt_shifted(radicand, 6, u64{1} << 40);
+    s[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(r.root + (r.round_up ? 1u : 0u));
+  }
+  return s;
+}();
+
+}  // namespace detail
+
+inline Vec3<q1_30> normalize_fast(std::int64_t x, std::int64_t y, std::int64_t z) {
+  using detail::u64;
+  const auto mag = [](std::int64_t v) { return static_cast<u64>(v < 0 ? -v : v); };
+  const int w = static_cast<int>(std::bit_width(mag(x) | mag(y) | mag(z)));
+  // Cut to 30 bits, rounding half up (the direction alone matters, so the rounding need not be
+  // symmetric); |c| <= 2^30.
+  const int cut = w > 30 ? w - 30 : 0;
+  const std::int64_t bias = cut > 0 ? std::int64_t{1} << (cut - 1) : 0;
+  const std::int64_t cx = (x + bias) >> cut, cy = (y + bias) >> cut, cz = (z + bias) >> cut;
+  const u64 s = static_cast<u64>(cx * cx) + static_cast<u64>(cy * cy) + static_cast<u64>(cz * cz);
+  if (s == 0) return Vec3<q1_30>{q1_30::zero(), q1_30::zero(), q1_30::zero()};
+  int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
+  e += e & 1;                                         // ... or [2^30, 2^31) for an even e
+  const u64 t = e >= 0 ? s >> e : s << -e;
+  u64 r = detail::rsqrt_fast_seed[static_cast<std::size_t>((t >> 24) - 64)];  // Q2.30
+  for (int it = 0; it < 2; ++it) {
+    const u64 r2 = (r * r) >> 30;                 // Q.30, <= 2^32
+    const u64 tr2 = (t * r2) >> 32;               // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)
+    r = (r * ((u64{3} << 30) - tr2)) >> 31;       // r (3 − T r²) / 2, Q2.30
+  }
+  // 1/|c| = r·2^-30 · 2^-(16 + e/2) · 2^30: component·r >> (16 + e/2), >= 1 since e >= -30.
+  // |component·r| <= 2^61; the result is within 2^30 (1 + 2^-28): no saturation.
+  const int sh = 16 + e / 2;
+  const std::int64_t half = std::int64_t{1} << (sh - 1), rr = static_cast<std::int64_t>(r);
+  const auto unit = [&](std::int64_t c) {
+    return q1_30::from_raw(static_cast<std::int32_t>((c * rr + half) >> sh));
+  };
+  return Vec3<q1_30>{unit(cx), unit(cy), unit(cz)};
+}
+
+}  // namespace tp::fx
