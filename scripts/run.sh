@@ -10,5 +10,5 @@ if [ -x build/release/server/tinyphong-server ]; then
 fi
 # Until the server exists: render the default scene with the device and say where it is.
 out=${TP_OUT:-build/release/teapot.png}
-build/release/host/tinyphong render scenes/teapot.json --method phong -o "$out"
+build/release/host/tinyphong render scenes/teapot.json --method kb-adaptive -o "$out"
 echo "rendered: $(realpath "$out")"

@@ -57,7 +57,8 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
 
 }  // namespace
 
-DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height)
+DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height,
+                           const std::string& method)
     : dir_(std::move(scenes_dir)) {
   for (const auto& e : std::filesystem::directory_iterator(dir_))
     if (e.is_regular_file() && e.path().extension() == ".json") scene_names_.push_back(e.path().stem().string());
@@ -67,6 +68,7 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
   host::Scene sc = host::load_scene(dir_ / (scene + ".json"));
   if (width > 0) sc.width = width;
   if (height > 0) sc.height = height;
+  if (!method.empty()) sc.method = method;
   if (auto e = install(std::move(sc), scene); !e.empty()) throw std::runtime_error(e);
 }
 

@@ -13,7 +13,9 @@ namespace tp::server {
 class DeviceSource : public FrameSource {
  public:
   // Throws host::SceneError / std::runtime_error if the initial scene cannot be loaded.
-  DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height);
+  // method: the shading method to start with (empty: the scene file's own).
+  DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height,
+               const std::string& method = "");
   const ViewSettings& settings() const override { return settings_; }
   std::string apply(const ViewSettings& s) override;
   std::string load_scene(const std::string& name) override;

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
 #else
   std::string source = "pattern";
 #endif
-  std::string scene = "teapot", scenes_dir;
+  std::string scene = "teapot", scenes_dir, method = "kb-adaptive";
 #ifdef TP_SCENES_DIR
   scenes_dir = TP_SCENES_DIR;
 #endif
@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
   app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")->capture_default_str();
+  app.add_option("--method", method, "shading method to start with (empty: the scene file's)")
+      ->capture_default_str();
   app.add_option("--source", source, "frame source: device or pattern (transport tests)")
       ->check(CLI::IsMember({"device", "pattern"}))->capture_default_str();
   app.add_option("--width", width, "initial width (default: the scene's)")->check(CLI::Range(16, 2048));
@@ -47,7 +49,7 @@ int main(int argc, char** argv) {
   try {
     if (source == "device") {
 #ifdef TP_HAVE_DEVICE
-      src = std::make_unique<tp::server::DeviceSource>(scenes_dir, scene, width, height);
+      src = std::make_unique<tp::server::DeviceSource>(scenes_dir, scene, width, height, method);
 #else
       throw std::runtime_error("built without the device (host driver missing)");
 #endif

@@ -77,8 +77,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   };
   static constexpr int kMaxLeaves = 1 << (2 * kMaxLevel);
   struct Lattice {
-    std::int32_t value[kLatticePoints][3];  // levels, Q.16, before the output clamp
-    std::uint32_t stamp[kLatticePoints];    // == generation: evaluated for this triangle
+    std::int32_t value[kLatticePoints][3] = {};  // levels, Q.16, before the output clamp
+    std::uint32_t stamp[kLatticePoints] = {};    // == generation: evaluated for this triangle
     std::uint32_t generation = 0;
   };
   static constexpr int index(int a, int b) {
@@ -114,8 +114,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.
   Leaf leaves_[kMaxLeaves];
   int leaf_count_ = 0;
-  std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel];
-  std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel];
+  std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel] = {};
+  std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint32_t omega_n_ = 0;  // the exponent omega_ was made for
   std::int64_t omega_ = 0;     // 0.6/√n in Q.30 rad (peak_level)
   Lattice lattice_;
