@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "firmware/kb/kb_methods.hpp"
 #include "firmware/kb/kb_quadratic.hpp"
@@ -48,6 +49,14 @@ enum class AdaptiveMode : std::uint8_t { kAdaptive, kNoSkip, kExactOnly };
 class KbAdaptiveMethod final : public ShadingMethod {
  public:
   enum class Path : std::uint8_t { kConstant, kLinear, kQuadratic, kSubdivided, kExact };
+  // What identifies a vertex for the boundary samples' memo.
+  struct VertexKey {
+    std::int32_t sx = 0, sy = 0;
+    std::int64_t z = 0;
+    std::int32_t nx = 0, ny = 0, nz = 0;
+    std::int32_t w = 0, ex = 0, ey = 0, ez = 0;  // clip w and the eye-space position
+    friend bool operator==(const VertexKey&, const VertexKey&) = default;
+  };
   explicit KbAdaptiveMethod(AdaptiveMode mode = AdaptiveMode::kAdaptive) : mode_(mode) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
@@ -85,6 +94,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
     return b * (kLatticeRes + 1) - b * (b - 1) / 2 + a;
   }
   const std::int32_t* lattice_at(int la, int lb);
+  void edge_sample(int la, int lb, int lc, std::int32_t out[3]);
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded);
@@ -119,6 +129,35 @@ class KbAdaptiveMethod final : public ShadingMethod {
   std::uint32_t omega_n_ = 0;  // the exponent omega_ was made for
   std::int64_t omega_ = 0;     // 0.6/√n in Q.30 rad (peak_level)
   Lattice lattice_;
+  // Samples on triangle edges, shared with the neighbours: keyed on the edge's vertices (in a
+  // canonical order) and the position along it, in units of 1/kMemoScale.
+  static constexpr std::int32_t kMemoScale = 1 << 16;
+  static constexpr std::uint32_t kEdgeMemo = 1024;
+  struct EdgeMemo {
+    VertexKey a, b;
+    std::int32_t share = 0;
+    std::int32_t value[3] = {0, 0, 0};
+    bool valid = false;
+  };
+  EdgeMemo edge_memo_[kEdgeMemo];
+  // The shading state the memo's values belong to.
+  struct MemoContext {
+    MaterialCmd material{};
+    LightState lights[kMaxLights]{};
+    EyeMode eye = EyeMode::kInfinite;
+    bool valid = false;
+    bool same(const ShadeContext& c) const {
+      return valid && c.eye == eye && std::memcmp(&material, &c.material, sizeof material) == 0 &&
+             std::memcmp(lights, c.lights, sizeof lights) == 0;
+    }
+    void take(const ShadeContext& c) {
+      material = c.material;
+      for (std::size_t i = 0; i < kMaxLights; ++i) lights[i] = c.lights[i];
+      eye = c.eye;
+      valid = true;
+    }
+  };
+  MemoContext memo_context_;
 };
 
 }  // namespace tp::fw::kb

@@ -61,20 +61,36 @@ class PointShader {
   // The point whose screen-space barycentric weights are k0 : k1 : k2 (any common scale, each
   // >= 0 and < 2^62, sum > 0).
   Point point(std::int64_t k0, std::int64_t k1, std::int64_t k2) const {
-    const Triangle& t = *tri_;
-    Point pt;
     k0 = k0 < 0 ? 0 : k0;  // on an edge the exact weight is 0; never below
     k1 = k1 < 0 ? 0 : k1;
     k2 = k2 < 0 ? 0 : k2;
     const int sh = shift_for(k0 | k1 | k2);
     std::int64_t mu[3] = {(k0 >> sh) * r_[0], (k1 >> sh) * r_[1], (k2 >> sh) * r_[2]};
+    return point_of(mu);
+  }
+
+  // The point of edge (a, b) with screen-space weights ka : kb (0 <= k <= 2^20): weighted by
+  // ka·w_b : kb·w_a, the exact integers of the hyperbolic interpolation, so that the result
+  // depends on the edge alone — the same bits from either triangle of the edge, in either order.
+  Point edge_point(int a, int b, std::int64_t ka, std::int64_t kb) const {
+    std::int64_t mu[3] = {0, 0, 0};
+    mu[a] = ka * tri_->v[b].w.raw();
+    mu[b] = kb * tri_->v[a].w.raw();
+    return point_of(mu);
+  }
+
+ private:
+  // The point with hyperbolic weights mu (each >= 0, sum < 2^62).
+  Point point_of(std::int64_t mu[3]) const {
+    const Triangle& t = *tri_;
+    Point pt;
     std::int64_t sum = mu[0] + mu[1] + mu[2];
     if (sum == 0) return pt;  // not inside the triangle
     // b_i = mu_i / sum by one reciprocal: the weights scaled so that sum is in [2^30, 2^31)
     // (exactly when shifted up, rounding 2^-31 relative when shifted down), inv = 2^61 / sum
     // in (2^30, 2^31], b_i = mu_i·inv / 2^31 in Q1.30 (relative error < 2^-29).
     const int bw = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(sum)));
-    for (std::int64_t& m : mu) m = bw > 31 ? m >> (bw - 31) : m << (31 - bw);
+    for (int i = 0; i < 3; ++i) mu[i] = bw > 31 ? mu[i] >> (bw - 31) : mu[i] << (31 - bw);
     sum = bw > 31 ? sum >> (bw - 31) : sum << (31 - bw);
     const std::int64_t inv = (std::int64_t{1} << 61) / sum;
     std::int64_t n[3] = {0, 0, 0};
@@ -95,6 +111,8 @@ class PointShader {
     pt.inside = true;
     return pt;
   }
+
+ public:
 
   int lights() const { return lights_; }
   const LightState& light(int i) const { return *light_[i]; }

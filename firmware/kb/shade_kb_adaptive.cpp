@@ -104,11 +104,90 @@ Cap cap_of(const Vec3u v[3]) {
 const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
   const int i = index(la, lb);
   if (lattice_.stamp[i] != lattice_.generation) {
-    point_.at(kLatticeRes - la - lb, la, lb, lattice_.value[i]);
+    const int lc = kLatticeRes - la - lb;
+    if (la == 0 || lb == 0 || lc == 0)
+      edge_sample(la, lb, lc, lattice_.value[i]);
+    else {
+      point_.shade(point_.point(lc, la, lb), lattice_.value[i]);
+      ++counters_->lattice_samples;
+    }
     lattice_.stamp[i] = lattice_.generation;
-    ++counters_->lattice_samples;
   }
   return lattice_.value[i];
+}
+
+namespace {
+KbAdaptiveMethod::VertexKey key_of(const ShadeVertex& v) {
+  return {v.sx, v.sy, v.z, v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw(),
+          v.w.raw(), v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
+}
+bool before(const KbAdaptiveMethod::VertexKey& a, const KbAdaptiveMethod::VertexKey& b) {
+  if (a.sx != b.sx) return a.sx < b.sx;
+  if (a.sy != b.sy) return a.sy < b.sy;
+  if (a.z != b.z) return a.z < b.z;
+  if (a.nx != b.nx) return a.nx < b.nx;
+  if (a.ny != b.ny) return a.ny < b.ny;
+  if (a.nz != b.nz) return a.nz < b.nz;
+  if (a.w != b.w) return a.w < b.w;
+  if (a.ex != b.ex) return a.ex < b.ex;
+  if (a.ey != b.ey) return a.ey < b.ey;
+  return a.ez < b.ez;
+}
+}  // namespace
+
+// A sample on the triangle's boundary: a function of the edge's two vertices alone
+// (PointShader::edge_point), so that neighbouring triangles share it through the memo, keyed on
+// everything the value depends on: both vertices (screen position, depth, w, normal, eye-space
+// position) and the position along the edge; the memo is emptied when the material, a light or
+// the eye mode changes.
+void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) {
+  // Barycentric weights (vertex 0, 1, 2) = (lc, la, lb); the edge holds the two non-zero ones.
+  int a = 0, b = 1;
+  std::int64_t ka = lc, kb = la;
+  if (la == 0) {
+    a = 0, b = 2, ka = lc, kb = lb;
+  } else if (lc == 0) {
+    a = 1, b = 2, ka = la, kb = lb;
+  }
+  VertexKey key_a = key_of(tri_->v[a]), key_b = key_of(tri_->v[b]);
+  if (ka == 0) {  // a vertex: both ends the same
+    key_a = key_b;
+    a = b;
+    ka = kb;
+  } else if (kb == 0) {
+    key_b = key_a;
+    b = a;
+    kb = ka;
+  }
+  if (before(key_b, key_a)) {  // canonical order, so that either triangle finds it
+    const VertexKey k = key_a;
+    key_a = key_b;
+    key_b = k;
+    const int v = a;
+    a = b;
+    b = v;
+    const std::int64_t w = ka;
+    ka = kb;
+    kb = w;
+  }
+  const auto share = static_cast<std::int32_t>(ka * kMemoScale / (ka + kb));  // of kMemoScale
+  std::uint32_t h = static_cast<std::uint32_t>(key_a.sx) * 73856093u ^
+                    static_cast<std::uint32_t>(key_a.sy) * 19349663u ^
+                    static_cast<std::uint32_t>(key_b.sx) * 83492791u ^
+                    static_cast<std::uint32_t>(key_b.sy) * 2654435761u ^
+                    static_cast<std::uint32_t>(share) * 40503u;
+  EdgeMemo& m = edge_memo_[(h ^ (h >> 15)) % kEdgeMemo];
+  if (m.valid && m.share == share && m.a == key_a && m.b == key_b) {
+    for (int c = 0; c < 3; ++c) out[c] = m.value[c];
+    return;
+  }
+  point_.shade(point_.edge_point(a, b, ka, kb), out);
+  ++counters_->lattice_samples;
+  m.a = key_a;
+  m.b = key_b;
+  m.share = share;
+  for (int c = 0; c < 3; ++c) m.value[c] = out[c];
+  m.valid = true;
 }
 
 // Lattice coordinates of quarter point (qu, qv) of a cell: kLatticeRes / (4·2^level) lattice
@@ -315,6 +394,11 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     lattice_.generation = 1;
   }
   point_.setup(tri, ctx, mode_ == AdaptiveMode::kAdaptive);
+  // The boundary samples' memo holds values of this material, these lights and this eye only.
+  if (!memo_context_.same(ctx)) {
+    for (EdgeMemo& m : edge_memo_) m.valid = false;
+    memo_context_.take(ctx);
+  }
   const Lambdas step = lambdas_step_x(tri);
   de1_ = step.l[1];
   de2_ = step.l[2];
