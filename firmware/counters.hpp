@@ -36,6 +36,7 @@ struct Counters {
   std::uint64_t adaptive_exact = 0;      // small and over budget: exact at every pixel
   std::uint64_t subtriangles = 0;        // sub-triangles of the subdivided triangles
   std::uint64_t subtriangles_exact = 0;  // of those, evaluated per pixel (over budget at 4^4)
+  std::uint64_t terminator_cells = 0;    // cells (or triangles) clamping N·L per pixel
   std::uint64_t lattice_samples = 0;     // exact Blinn-Phong samples (vertices, midpoints, checks)
   std::uint64_t frames = 0;              // end_frame calls since construction (not reset)
 };

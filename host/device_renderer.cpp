@@ -121,6 +121,7 @@ CounterSnapshot counter_snapshot(const fw::Counters& c) {
           {"adaptive_exact", c.adaptive_exact},
           {"subtriangles", c.subtriangles},
           {"subtriangles_exact", c.subtriangles_exact},
+          {"terminator_cells", c.terminator_cells},
           {"lattice_samples", c.lattice_samples},
           {"frames", c.frames}};
 }

@@ -61,10 +61,10 @@ EOF
 ## 2, 4 and 8 lights
 
 Lights as listed in \`scenes/README.md\` (the base light first). Methods: Gouraud (the
-yardstick), exact fixed-point Phong and the three Kuijk-Blake evaluations.
+yardstick), exact fixed-point Phong, the three Kuijk-Blake evaluations and kb-adaptive.
 
 EOF
-  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,kb,kb-decomposition,kb-exact | tail -n +3
+  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,kb,kb-decomposition,kb-exact,kb-adaptive | tail -n +3
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 echo "wrote $out"

@@ -32,7 +32,7 @@ namespace tp::fw::kb {
 // the check points: the worst case measured over 20,000 random triangles is in
 // tests/kb/test_kb_adaptive.cpp.
 inline constexpr std::int32_t kBudgetLevels = 1;
-inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.16
+inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.15
 inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
 // Over budget and at most this many pixels: exact per pixel (level 1 alone takes 30 more
 // samples than level 0, and each sample costs about what a pixel does).
@@ -40,6 +40,11 @@ inline constexpr std::int64_t kExactAreaPixels = 48;
 inline constexpr std::int64_t kExactArea2 = kExactAreaPixels * 2 * 256;  // Triangle::area2 units
 inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
+// Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
+// their diffuse is sampled unclamped and max(0, ·) applied per pixel where a cell crosses it.
+inline constexpr int kMaxTerminators = 4;
+inline constexpr std::int64_t kTerminatorMinPixels = 256;
+inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.15 levels), then N·L (Q.24)
 
 // kAdaptive: the method. kNoSkip: the same choices, but constant triangles are stepped and every
 // light is evaluated everywhere (the image must not change: tested). kExactOnly: every pixel
@@ -82,11 +87,16 @@ class KbAdaptiveMethod final : public ShadingMethod {
     Cell cell;
     SteppedQuadratic q[3];
     bool exact = false;
+    // Terminators crossing the cell: N·L's quadratic and the weight per channel (levels Q.15
+    // per unit N·L) of max(0, −N·L), the diffuse the unclamped samples left out.
+    int crossing = 0;
+    SteppedQuadratic nl[kMaxTerminators];
+    std::int64_t weight[kMaxTerminators][3];
     bool in_range = false;  // the quadratics stay inside [0, 255]: no clamp per pixel
   };
   static constexpr int kMaxLeaves = 1 << (2 * kMaxLevel);
   struct Lattice {
-    std::int32_t value[kLatticePoints][3] = {};  // levels, Q.16, before the output clamp
+    std::int32_t value[kLatticePoints][kChannels] = {};  // see kChannels
     std::uint32_t stamp[kLatticePoints] = {};    // == generation: evaluated for this triangle
     std::uint32_t generation = 0;
   };
@@ -95,6 +105,9 @@ class KbAdaptiveMethod final : public ShadingMethod {
   }
   const std::int32_t* lattice_at(int la, int lb);
   void edge_sample(int la, int lb, int lc, std::int32_t out[3]);
+  void find_terminators(const Triangle& tri);
+  void cell_points(const Cell& c, const std::int32_t* v[15]);
+  void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n, Rgb8* out) const;
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded);
@@ -124,6 +137,10 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.
   Leaf leaves_[kMaxLeaves];
   int leaf_count_ = 0;
+  int terminators_ = 0;                      // lights with their terminator handled
+  std::uint32_t terminator_mask_ = 0;        // those lights (PointShader's light numbers)
+  std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.15 per unit N·L
+  std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_
   std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint32_t omega_n_ = 0;  // the exponent omega_ was made for

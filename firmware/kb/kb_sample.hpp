@@ -4,7 +4,7 @@
 // with hyperbolic barycentrics, the normal renormalised, L, the eye direction and H exact there
 // (so that near point lights are right), with the sample-grade normalize_fast (2.8·10^-9 per
 // component; fixedpoint/normalize_fast.hpp) instead of normalize's four 128-bit Newton steps.
-// The result is the 8-bit output level in Q.16 before the output's clamp to [0, 255].
+// The result is the 8-bit output level in Q.15 before the output's clamp to [0, 255].
 #pragma once
 
 #include <bit>
@@ -20,7 +20,7 @@ namespace tp::fw::kb {
 
 class PointShader {
  public:
-  static constexpr int kFrac = 16;  // output: levels, Q.16
+  static constexpr int kFrac = 15;  // output: levels, Q.15
 
   // skipping = false evaluates every light at every point, also where it adds exactly 0.
   void setup(const Triangle& tri, const ShadeContext& ctx, bool skipping = true) {
@@ -134,16 +134,22 @@ class PointShader {
                               std::int64_t{lv.z.raw()} + pt.eye.z.raw());
   }
 
-  // The level (Q.16, before the output clamp) of each channel at the point.
-  void shade(const Point& pt, std::int32_t out[3]) const {
+  // The level (Q.15, before the output clamp) of each channel at the point: out[0..2]. Lights of
+  // the `unclamped` mask (bit i: light(i); the terminators of kb-adaptive) have their diffuse
+  // left unclamped — N·L may be negative — and their N·L reported, in order, in out[3..] (Q.24).
+  void shade(const Point& pt, std::int32_t out[], std::uint32_t unclamped = 0) const {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
+    int k = 3;
     if (pt.inside) {
       const MaterialCmd& m = ctx_->material;
       for (int li = 0; li < lights_; ++li) {
         const LightState& l = *light_[li];
         const Vec3u lv = light_direction(pt, li);
         const Vec3u h = halfway(pt, li, lv);
-        const q1_30 ndl = positive(fx::dot<q1_30>(pt.normal, lv));
+        const q1_30 dot_l = fx::dot<q1_30>(pt.normal, lv);
+        const bool open = ((unclamped >> li) & 1u) != 0;
+        if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l.raw(), 6));
+        const q1_30 ndl = open ? dot_l : positive(dot_l);
         const q1_30 ndh = positive(fx::dot<q1_30>(pt.normal, h));
         if (skipping_ && ndl.raw() == 0 && ndh.raw() == 0) continue;  // adds exactly 0
         const std::int64_t spec = unit_mul(m.ks.raw(), unit_power(ndh.raw(), m.n));
@@ -154,6 +160,8 @@ class PointShader {
       }
     }
     for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
+    if (!pt.inside)
+      for (int i = 0; i < std::popcount(unclamped); ++i) out[3 + i] = 0;
   }
 
   void at(std::int64_t k0, std::int64_t k1, std::int64_t k2, std::int32_t out[3]) const {
@@ -182,12 +190,13 @@ class PointShader {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
     return w > 28 ? w - 28 : 0;
   }
-  // Q.30 radiance -> level in Q.16, NOT clamped to [0, 255]: the output clamps per pixel, so
-  // that a quadratic fitted to these samples meets no kink where the colour saturates. Kept in
-  // [−255, 510] (|g| < 2^25, the bound kb_quadratic.hpp's products assume); beyond it the
-  // output is black or saturated either way.
+  // Q.30 radiance -> level in Q.15, NOT clamped to [0, 255]: the output clamps per pixel, so
+  // that a quadratic fitted to these samples meets no kink where the colour saturates, and the
+  // unclamped diffuse of kb-adaptive's terminators may take it below 0. Kept in [−1020, 1020]
+  // levels (|g| < 2^25, the bound kb_quadratic.hpp's products assume); past +1020 the output
+  // is saturated either way, and kb-adaptive keeps its terminators above −765 levels.
   static std::int32_t level_of(std::int64_t i_q30) {
-    constexpr std::int64_t lo = -(std::int64_t{1} << 30), hi = std::int64_t{2} << 30;
+    constexpr std::int64_t lo = -(std::int64_t{4} << 30), hi = std::int64_t{4} << 30;
     const std::int64_t v = i_q30 < lo ? lo : (i_q30 > hi ? hi : i_q30);
     return static_cast<std::int32_t>(fx::detail::round_shift_right(v * 255, 30 - kFrac));
   }

@@ -43,15 +43,13 @@ std::int64_t curvature_bound(const LocalQuadratic& q) {
   return (abs64(q.cuu) + abs64(q.cvv) + abs64(q.cuv) + 3) / 4;
 }
 
-// Whether a cell's quadratic stays inside [0, 255.5) levels — then the pixel loop needs no
-// clamp: over the cell it lies within (|c_uu| + |c_vv| + |c_uv|) / 4 of the plane through its
-// vertex values (curvature_bound), plus a level of margin for the stepping's rounding.
-bool inside_levels(const LocalQuadratic& q, const Samples6& s) {
-  std::int64_t lo = s.g[0], hi = s.g[0];
-  for (int k = 1; k < 3; ++k) {
-    lo = s.g[k] < lo ? s.g[k] : lo;
-    hi = s.g[k] > hi ? s.g[k] : hi;
-  }
+// Whether a quadratic stays inside [0, 255.5) levels over its cell — then the pixel loop needs
+// no clamp: it lies within (|c_uu| + |c_vv| + |c_uv|) / 4 of the plane through its vertex values
+// (curvature_bound), plus a level of margin for the stepping's rounding.
+bool inside_levels(const LocalQuadratic& q) {
+  const std::int64_t a = q.c0, b = q.c0 + q.cu + q.cuu, c = q.c0 + q.cv + q.cvv;  // q at A, B, C
+  const std::int64_t lo = a < b ? (a < c ? a : c) : (b < c ? b : c);
+  const std::int64_t hi = a > b ? (a > c ? a : c) : (b > c ? b : c);
   const std::int64_t slack = curvature_bound(q) + (std::int64_t{1} << kSampleFrac);
   return lo - slack >= 0 && hi + slack < (std::int64_t{255} << kSampleFrac);
 }
@@ -105,10 +103,10 @@ const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
   const int i = index(la, lb);
   if (lattice_.stamp[i] != lattice_.generation) {
     const int lc = kLatticeRes - la - lb;
-    if (la == 0 || lb == 0 || lc == 0)
+    if ((la == 0 || lb == 0 || lc == 0) && terminators_ == 0)  // (the memo holds colours only)
       edge_sample(la, lb, lc, lattice_.value[i]);
     else {
-      point_.shade(point_.point(lc, la, lb), lattice_.value[i]);
+      point_.shade(point_.point(lc, la, lb), lattice_.value[i], terminator_mask_);
       ++counters_->lattice_samples;
     }
     lattice_.stamp[i] = lattice_.generation;
@@ -212,31 +210,49 @@ Samples6 KbAdaptiveMethod::samples_of(const Cell& cell, int ch) const {
   return Samples6{{at(0, 0), at(4, 0), at(0, 4), at(2, 0), at(2, 2), at(0, 2)}};
 }
 
-// The error estimate: max over channels and the nine check points of |g − q|, Q.16 levels
+// The error estimate: max over channels and the nine check points of |g − q|, Q.15 levels
 // (rounded up). Evaluates the cell's fifteen points where needed.
-std::int64_t KbAdaptiveMethod::check_error(const Cell& cell) {
-  const int qs[15][2] = {{0, 0}, {4, 0}, {0, 4}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {3, 0},
-                         {0, 1}, {0, 3}, {3, 1}, {1, 3}, {1, 1}, {2, 1}, {1, 2}};
-  const std::int32_t* v[15];
+// The fifteen points of a cell's quarter lattice (six samples, then the nine checks), evaluated
+// where needed.
+void KbAdaptiveMethod::cell_points(const Cell& cell, const std::int32_t* v[15]) {
+  constexpr int kQuarters[15][2] = {{0, 0}, {4, 0}, {0, 4}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {3, 0},
+                                    {0, 1}, {0, 3}, {3, 1}, {1, 3}, {1, 1}, {2, 1}, {1, 2}};
   for (int k = 0; k < 15; ++k) {
     int a = 0, b = 0;
-    cell_point(cell, qs[k][0], qs[k][1], a, b);
+    cell_point(cell, kQuarters[k][0], kQuarters[k][1], a, b);
     v[k] = lattice_at(a, b);
   }
+}
+
+namespace {
+// max over the nine check points of |g − q| for channel ch (rounded up).
+std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
+  const Samples6 s{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}};
   std::int64_t worst = 0;
-  for (int ch = 0; ch < 3; ++ch) {
-    const Samples6 s{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}};
-    for (int k = 0; k < 9; ++k) {
-      const QuarterPoint& p = kCheckPoints[k];
-      const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - quadratic_x8_at(s, p.qu, p.qv));
-      if (e > worst) worst = e;
-    }
+  for (int k = 0; k < 9; ++k) {
+    const QuarterPoint& p = kCheckPoints[k];
+    const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - quadratic_x8_at(s, p.qu, p.qv));
+    if (e > worst) worst = e;
   }
   return (worst + 7) / 8;
 }
+}  // namespace
 
-// The four children of a cell at the next level (midpoint subdivision; the middle child has the
-// other orientation).
+// The error estimate of a cell, Q.15 levels: the worst colour channel, plus for each terminator
+// its N·L error (Q.24) times its heaviest channel weight — max(0, ·) is 1-Lipschitz.
+std::int64_t KbAdaptiveMethod::check_error(const Cell& cell) {
+  const std::int32_t* v[15];
+  cell_points(cell, v);
+  std::int64_t worst = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    const std::int64_t e = channel_error(v, ch);
+    if (e > worst) worst = e;
+  }
+  for (int t = 0; t < terminators_; ++t)
+    worst += (channel_error(v, 3 + t) * term_worst_[t] + (std::int64_t{1} << 24) - 1) >> 24;
+  return worst;
+}
+
 namespace {
 void children_of(const KbAdaptiveMethod::Cell& c, KbAdaptiveMethod::Cell out[4]) {
   const int l = c.level + 1, i = 2 * c.i, j = 2 * c.j;
@@ -265,23 +281,58 @@ void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
   for (const Cell& k : kids) mark(k, leaf);
 }
 
-// Makes c a leaf: its quadratics, or per-pixel evaluation.
+// Makes c a leaf: its quadratics, or per-pixel evaluation. A terminator whose N·L keeps one
+// sign over the cell needs no clamp there: lit, its unclamped diffuse is exact; dark, the
+// exact diffuse is 0, so its N·L quadratic times the weights is taken off the colours'.
 void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
   ++counters_->subtriangles;
   if (!quadratic) ++counters_->subtriangles_exact;
   Leaf& leaf = leaves_[leaf_count_];
   leaf.cell = c;
   leaf.exact = !quadratic;
+  leaf.crossing = 0;
   if (quadratic) {
     // Steps in the cell's own coordinates: 2^level times the triangle's, reversed in a "down"
     // cell (its u, v run from the opposite corner).
     const std::int64_t scale = c.up ? std::int64_t{1} << c.level : -(std::int64_t{1} << c.level);
+    const std::int64_t du = du_ * scale, dv = dv_ * scale;
+    LocalQuadratic q[3];
+    for (int ch = 0; ch < 3; ++ch) q[ch] = fit_quadratic(samples_of(c, ch));
+    const std::int32_t* points[15];
+    if (terminators_ > 0) cell_points(c, points);
+    for (int t = 0; t < terminators_; ++t) {
+      const Samples6 samples = samples_of(c, 3 + t);
+      const LocalQuadratic nl = fit_quadratic(samples);
+      std::int64_t lo = samples.g[0], hi = samples.g[0];
+      for (int k = 1; k < 6; ++k) {
+        lo = samples.g[k] < lo ? samples.g[k] : lo;
+        hi = samples.g[k] > hi ? samples.g[k] : hi;
+      }
+      // The exact N·L keeps its sign where the quadratic's range, widened by the quadratic's
+      // departure from the vertex plane and by its error at the check points, does.
+      const std::int64_t slack = curvature_bound(nl) + channel_error(points, 3 + t) + (std::int64_t{1} << 12);
+      if (lo - slack > 0) continue;  // lit over the cell
+      if (hi + slack < 0) {          // dark over the cell
+        for (int ch = 0; ch < 3; ++ch) {
+          const std::int64_t w = term_weight_[t][ch];
+          q[ch].c0 -= (w * nl.c0) >> 24;
+          q[ch].cu -= (w * nl.cu) >> 24;
+          q[ch].cv -= (w * nl.cv) >> 24;
+          q[ch].cuu -= (w * nl.cuu) >> 24;
+          q[ch].cvv -= (w * nl.cvv) >> 24;
+          q[ch].cuv -= (w * nl.cuv) >> 24;
+        }
+        continue;
+      }
+      const int k = leaf.crossing++;
+      leaf.nl[k] = prepare_steps(nl, du, dv);
+      for (int ch = 0; ch < 3; ++ch) leaf.weight[k][ch] = term_weight_[t][ch];
+    }
+    if (leaf.crossing > 0) ++counters_->terminator_cells;
     leaf.in_range = true;
     for (int ch = 0; ch < 3; ++ch) {
-      const Samples6 samples = samples_of(c, ch);
-      const LocalQuadratic q = fit_quadratic(samples);
-      leaf.q[ch] = prepare_steps(q, du_ * scale, dv_ * scale);
-      leaf.in_range = leaf.in_range && inside_levels(q, samples);
+      leaf.in_range = leaf.in_range && inside_levels(q[ch]);
+      leaf.q[ch] = prepare_steps(q[ch], du, dv);
     }
   }
   mark(c, static_cast<std::uint16_t>(leaf_count_++));
@@ -334,8 +385,61 @@ void KbAdaptiveMethod::choose_cheap_path() {
   }
   if (path_ != Path::kConstant)
     for (int c = 0; c < 3; ++c)
-      whole_in_range_ = whole_in_range_ && inside_levels(q[c], samples_of(kWhole, c));
+      whole_in_range_ = whole_in_range_ && inside_levels(q[c]);
   for (int c = 0; c < 3; ++c) whole_[c] = prepare_steps(q[c], du_, dv_);
+}
+
+// The lights whose terminator may cross the triangle: N over it stays in the cap of the vertex
+// normals and L in the cap of the vertex L (as in peak_level), so N·L keeps its sign unless the
+// caps' centres are within r_N + r_L of 90° (margins for the angle series). Their diffuse is
+// sampled unclamped and clamped per pixel (add_leaf); beyond kMaxTerminators, the rest keep the
+// clamp in the samples (and the kink: refinement or per-pixel evaluation handles them).
+void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
+  terminators_ = 0;
+  std::uint32_t mask = 0;
+  std::int64_t total = 0;
+  const MaterialCmd& m = ctx_->material;
+  // A small triangle that a terminator crosses is cheaper per pixel (its check fails, and it has
+  // fewer pixels than refining would take samples): only larger ones take the terminators apart.
+  if (m.kd.raw() != 0 && tri.area2 / (2 * 256) > kTerminatorMinPixels) {
+    const Vec3u normals[3] = {tri.v[0].normal, tri.v[1].normal, tri.v[2].normal};
+    const Cap n_cap = cap_of(normals);
+    const std::int64_t r_n = angle_of(n_cap.cos_radius);
+    for (int li = 0; li < point_.lights() && terminators_ < kMaxTerminators; ++li) {
+      const LightState& l = point_.light(li);
+      Vec3u lv[3];
+      for (int v = 0; v < 3; ++v) {
+        const Vec3q16& p = tri.v[v].eye;
+        lv[v] = l.type == LightType::kDirectional
+                    ? l.direction
+                    : fx::normalize_fast(std::int64_t{l.position.x.raw()} - p.x.raw(),
+                                         std::int64_t{l.position.y.raw()} - p.y.raw(),
+                                         std::int64_t{l.position.z.raw()} - p.z.raw());
+      }
+      const Cap l_cap = cap_of(lv);
+      const std::int64_t spread = (r_n + angle_of(l_cap.cos_radius)) * 17 / 16;
+      const std::int64_t d = angle_of(fx::dot<q1_30>(n_cap.centre, l_cap.centre).raw());
+      constexpr std::int64_t kLit = 1599875000, kDark = 1771674908;  // 1.49 and 1.65 rad, Q.30
+      if (d * 17 / 16 + spread <= kLit || d * 15 / 16 - spread >= kDark) continue;
+      // Weight of a unit of N·L in channel c: kd·O_c·Il_c, in levels Q.15 (as shade() sums it).
+      std::int64_t worst = 0;
+      for (int c = 0; c < 3; ++c) {
+        const std::int64_t kdo = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
+        const std::int64_t w = ((kdo * l.color[c].raw()) >> 16) * 255 >> (30 - kSampleFrac);
+        term_weight_[terminators_][c] = w;
+        worst = w > worst ? w : worst;
+      }
+      // The unclamped diffuse may take the sampled colour below 0 by the terminators' weights
+      // together: they stay within 765 levels, inside the samples' range (kb_sample.hpp), so
+      // that no sample is cut and the per-pixel clamp restores the exact sum.
+      if (worst == 0 || total + worst > (std::int64_t{765} << kSampleFrac)) continue;
+      total += worst;
+      term_worst_[terminators_] = worst;
+      mask |= std::uint32_t{1} << li;
+      ++terminators_;
+    }
+  }
+  terminator_mask_ = mask;
 }
 
 // The level that cell c's descendants must reach for their samples to see every highlight peak
@@ -411,10 +515,18 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     ++counters_->adaptive_exact;
     return true;
   }
+  find_terminators(tri);
   const int guard = peak_level(kWhole);
   const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
-  if (guard == 0 && err0 <= kEstimateBudget) {
+  if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
     choose_cheap_path();
+  } else if (guard == 0 && err0 <= kEstimateBudget) {
+    // One quadratic, with the terminators' clamps: the triangle is its own leaf.
+    path_ = Path::kQuadratic;
+    ++counters_->adaptive_quadratic;
+    level_ = kMaxLevel;
+    leaf_count_ = 0;
+    add_leaf(kWhole, true);
   } else {
     // The cost of refining, guessed from the guard and from the h³ law of quadratic
     // interpolation (each halving of the size divides the error by 8) applied to err0,
@@ -514,7 +626,37 @@ void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_
   const std::int64_t nv = c.up ? t - c.j * area : (c.j + 1) * area - t;
   const std::int64_t u = fx::div<local_t>(I62::from_raw(nu), I62::from_raw(area)).raw();
   const std::int64_t v = fx::div<local_t>(I62::from_raw(nv), I62::from_raw(area)).raw();
-  fill_quadratic(leaf.q, leaf.in_range, u, v, n, out);
+  if (leaf.crossing > 0)
+    shade_crossing(leaf, u, v, n, out);
+  else
+    fill_quadratic(leaf.q, leaf.in_range, u, v, n, out);
+}
+
+// A cell that a terminator crosses: the colours' quadratics plus, per crossing terminator, its
+// weights times max(0, −N·L), N·L forward-differenced like the colours.
+void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v,
+                                      std::int32_t n, Rgb8* out) const {
+  QuadStep st[3 + kMaxTerminators];
+  for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n > 1);
+  for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(leaf.nl[k], u, v, n > 1);
+  const int count = 3 + leaf.crossing;
+  for (std::int32_t x = 0; x < n; ++x) {
+    std::int64_t colour[3] = {st[0].v, st[1].v, st[2].v};
+    for (int k = 0; k < leaf.crossing; ++k) {
+      // N·L: Q.24 samples stepped in the state's scale (× 2^(40 − 15)); below zero the diffuse
+      // was left out of the colours.
+      const std::int64_t nl = st[3 + k].v;
+      if (nl >= 0) continue;
+      const std::int64_t dark = (-nl) >> (kQuadStateFrac - kSampleFrac);  // Q.24
+      for (int c = 0; c < 3; ++c)  // Q.24 × Q.15 -> Q.40
+        colour[c] += (dark * leaf.weight[k][c]) << (kQuadStateFrac - 24 - kSampleFrac);
+    }
+    out[x] = Rgb8{quad_level(colour[0]), quad_level(colour[1]), quad_level(colour[2])};
+    for (int i = 0; i < count; ++i) {
+      st[i].v += st[i].d1;
+      st[i].d1 += st[i].d2;
+    }
+  }
 }
 
 Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {

@@ -21,7 +21,7 @@ namespace {
 
 TEST(KbQuadratic, PassesThroughItsSixSamples) {
   std::mt19937 rng(7);
-  std::uniform_int_distribution<std::int32_t> g(0, 255 << 16);
+  std::uniform_int_distribution<std::int32_t> g(-(1020 << kSampleFrac), 1020 << kSampleFrac);
   for (int trial = 0; trial < 1000; ++trial) {
     Samples6 s{};
     for (std::int32_t& v : s.g) v = g(rng);
@@ -42,7 +42,7 @@ TEST(KbQuadratic, PassesThroughItsSixSamples) {
 
 TEST(KbQuadratic, ForwardDifferencesFollowTheQuadratic) {
   std::mt19937 rng(11);
-  std::uniform_int_distribution<std::int32_t> g(0, 255 << 16);
+  std::uniform_int_distribution<std::int32_t> g(-(1020 << kSampleFrac), 1020 << kSampleFrac);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   double worst = 0;
   for (int trial = 0; trial < 300; ++trial) {
@@ -58,7 +58,7 @@ TEST(KbQuadratic, ForwardDifferencesFollowTheQuadratic) {
     for (int x = 0; x < n; ++x) {
       const double u = u0 + x * du, v = v0 + x * dv;
       const double exact = (static_cast<double>(q.c0) + q.cu * u + q.cv * v + q.cuu * u * u +
-                            q.cvv * v * v + q.cuv * u * v) / 65536.0;
+                            q.cvv * v * v + q.cuv * u * v) / (1 << kSampleFrac);
       const double got = static_cast<double>(st.v) / static_cast<double>(std::int64_t{1} << kQuadStateFrac);
       worst = std::max(worst, std::fabs(got - exact));
       st.v += st.d1;
