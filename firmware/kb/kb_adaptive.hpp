@@ -32,7 +32,7 @@ namespace tp::fw::kb {
 // the check points: the worst case measured over 20,000 random triangles is in
 // tests/kb/test_kb_adaptive.cpp.
 inline constexpr std::int32_t kBudgetLevels = 1;
-inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.15
+inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
 inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
 // Over budget and at most this many pixels: exact per pixel (level 1 alone takes 30 more
 // samples than level 0, and each sample costs about what a pixel does).
@@ -42,9 +42,9 @@ inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the de
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
 // their diffuse is sampled unclamped and max(0, ·) applied per pixel where a cell crosses it.
-inline constexpr int kMaxTerminators = 4;
+inline constexpr int kMaxTerminators = 8;
 inline constexpr std::int64_t kTerminatorMinPixels = 256;
-inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.15 levels), then N·L (Q.24)
+inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.14 levels), then N·L (Q.24)
 
 // kAdaptive: the method. kNoSkip: the same choices, but constant triangles are stepped and every
 // light is evaluated everywhere (the image must not change: tested). kExactOnly: every pixel
@@ -87,7 +87,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
     Cell cell;
     SteppedQuadratic q[3];
     bool exact = false;
-    // Terminators crossing the cell: N·L's quadratic and the weight per channel (levels Q.15
+    // Terminators crossing the cell: N·L's quadratic and the weight per channel (levels Q.14
     // per unit N·L) of max(0, −N·L), the diffuse the unclamped samples left out.
     int crossing = 0;
     SteppedQuadratic nl[kMaxTerminators];
@@ -139,7 +139,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   int leaf_count_ = 0;
   int terminators_ = 0;                      // lights with their terminator handled
   std::uint32_t terminator_mask_ = 0;        // those lights (PointShader's light numbers)
-  std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.15 per unit N·L
+  std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
   std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_
   std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel] = {};

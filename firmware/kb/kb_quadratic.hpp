@@ -10,7 +10,7 @@
 //   c_uv = 4 (g_A − g_AB − g_CA + g_BC)
 // (substitution: q(1, 0) = g_B, q(½, 0) = g_AB, q(½, ½) = g_BC, …; tests/kb/test_kb_quadratic.cpp).
 //
-// Formats: samples are 8-bit output levels in Q.15 (|g| < 2^25, unclamped: kb_sample.hpp); the span state is levels in
+// Formats: samples are 8-bit output levels in Q.14 (|g| < 2^25, unclamped: kb_sample.hpp); the span state is levels in
 // Q.40 (kStateFrac), so that 4,096 steps of a rounded second difference stay far below 1/256 of
 // a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
 #pragma once
@@ -23,7 +23,7 @@
 
 namespace tp::fw::kb {
 
-inline constexpr int kSampleFrac = 15;  // sample values: levels, Q.15
+inline constexpr int kSampleFrac = 14;  // sample values: levels, Q.14
 inline constexpr int kQuadStateFrac = 40;  // forward-differencing state: levels, Q.40
 using local_t = fx::Q<32, 30, std::int64_t>;  // u, v, du, dv
 
@@ -33,7 +33,7 @@ struct Samples6 {
 };
 
 struct LocalQuadratic {
-  std::int64_t c0 = 0, cu = 0, cv = 0, cuu = 0, cvv = 0, cuv = 0;  // levels, Q.15
+  std::int64_t c0 = 0, cu = 0, cv = 0, cuu = 0, cvv = 0, cuv = 0;  // levels, Q.14
 };
 
 constexpr LocalQuadratic fit_quadratic(const Samples6& s) {
@@ -75,13 +75,13 @@ struct QuadStep {
 //   d1 = e0 + e_u u + e_v v,  e0 = c_u du + c_v dv + c_uu du² + c_vv dv² + c_uv du dv,
 //   e_u = 2 c_uu du + c_uv dv,  e_v = 2 c_vv dv + c_uv du,
 // and the second difference d2 = 2 (c_uu du² + c_vv dv² + c_uv du dv) is constant. e0 and d2
-// are formed once per cell with the steps' full precision (Q.15 × Q.60 in 128 bits).
+// are formed once per cell with the steps' full precision (Q.14 × Q.60 in 128 bits).
 // Bounds: |c| < 2^29 (|g| < 2^25); |u|, |v| <= 1 + 2^-20 at a pixel of the piece, and |du|, |dv|
 // < 1 + 2^-20 when the piece has two pixels or more (both lie in the cell); steps are clamped
 // to ±2 (a one-pixel piece never uses them), so every product below stays under 2^62.
 struct SteppedQuadratic {
   LocalQuadratic q;
-  std::int64_t e0 = 0, eu = 0, ev = 0, d2 = 0;  // e0, d2: Q.40; eu, ev: Q.45 (× Q.30 -> Q.75)
+  std::int64_t e0 = 0, eu = 0, ev = 0, d2 = 0;  // e0, d2: Q.40; eu, ev: Q.44 (× Q.30 -> Q.74)
 };
 
 inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, std::int64_t dv) {
@@ -92,13 +92,13 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
   SteppedQuadratic s;
   s.q = q;
   const std::int64_t du2 = du * du, dv2 = dv * dv, dudv = du * dv;  // Q.60, <= 2^62
-  constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;   // Q.15 × Q.60 -> Q.40
-  constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;  // Q.15 × Q.30 -> Q.40
+  constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;   // Q.14 × Q.60 -> Q.40
+  constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;  // Q.14 × Q.30 -> Q.40
   const std::int64_t curve = mul_shr(q.cuu, du2, kFromSq) + mul_shr(q.cvv, dv2, kFromSq) +
                              mul_shr(q.cuv, dudv, kFromSq);
   s.d2 = 2 * curve;
   s.e0 = mul_shr(q.cu, du, kFromLin) + mul_shr(q.cv, dv, kFromLin) + curve;
-  s.eu = 2 * q.cuu * du + q.cuv * dv;  // Q.45
+  s.eu = 2 * q.cuu * du + q.cuv * dv;  // Q.44
   s.ev = 2 * q.cvv * dv + q.cuv * du;
   return s;
 }
@@ -106,8 +106,8 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
 // The state at local (u, v) (Q.30). With steps = false (a one-pixel piece) only the value.
 inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, bool steps) {
   using cosn::fd_detail::mul_shr;
-  constexpr int kToState = kQuadStateFrac - kSampleFrac;    // 25
-  constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.15 -> Q.40: >> 5
+  constexpr int kToState = kQuadStateFrac - kSampleFrac;    // 26
+  constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   const LocalQuadratic& q = s.q;
   const auto sq30 = [](std::int64_t a, std::int64_t b) {
     return fx::detail::round_shift_right(a * b, 30);
@@ -118,7 +118,7 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
                                            q.cvv * sq30(v, v) + q.cuv * sq30(u, v),
                                        kProd);
   if (!steps) return st;
-  st.d1 = s.e0 + mul_shr(s.eu, u, kProd + 30) + mul_shr(s.ev, v, kProd + 30);  // Q.45 × Q.30 -> Q.40
+  st.d1 = s.e0 + mul_shr(s.eu, u, kProd + 30) + mul_shr(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
   st.d2 = s.d2;
   return st;
 }

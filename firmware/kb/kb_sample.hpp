@@ -4,7 +4,7 @@
 // with hyperbolic barycentrics, the normal renormalised, L, the eye direction and H exact there
 // (so that near point lights are right), with the sample-grade normalize_fast (2.8·10^-9 per
 // component; fixedpoint/normalize_fast.hpp) instead of normalize's four 128-bit Newton steps.
-// The result is the 8-bit output level in Q.15 before the output's clamp to [0, 255].
+// The result is the 8-bit output level in Q.14 before the output's clamp to [0, 255].
 #pragma once
 
 #include <bit>
@@ -20,7 +20,7 @@ namespace tp::fw::kb {
 
 class PointShader {
  public:
-  static constexpr int kFrac = 15;  // output: levels, Q.15
+  static constexpr int kFrac = 14;  // output: levels, Q.14
 
   // skipping = false evaluates every light at every point, also where it adds exactly 0.
   void setup(const Triangle& tri, const ShadeContext& ctx, bool skipping = true) {
@@ -134,7 +134,7 @@ class PointShader {
                               std::int64_t{lv.z.raw()} + pt.eye.z.raw());
   }
 
-  // The level (Q.15, before the output clamp) of each channel at the point: out[0..2]. Lights of
+  // The level (Q.14, before the output clamp) of each channel at the point: out[0..2]. Lights of
   // the `unclamped` mask (bit i: light(i); the terminators of kb-adaptive) have their diffuse
   // left unclamped — N·L may be negative — and their N·L reported, in order, in out[3..] (Q.24).
   void shade(const Point& pt, std::int32_t out[], std::uint32_t unclamped = 0) const {
@@ -190,13 +190,13 @@ class PointShader {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
     return w > 28 ? w - 28 : 0;
   }
-  // Q.30 radiance -> level in Q.15, NOT clamped to [0, 255]: the output clamps per pixel, so
+  // Q.30 radiance -> level in Q.14, NOT clamped to [0, 255]: the output clamps per pixel, so
   // that a quadratic fitted to these samples meets no kink where the colour saturates, and the
-  // unclamped diffuse of kb-adaptive's terminators may take it below 0. Kept in [−1020, 1020]
-  // levels (|g| < 2^25, the bound kb_quadratic.hpp's products assume); past +1020 the output
-  // is saturated either way, and kb-adaptive keeps its terminators above −765 levels.
+  // unclamped diffuse of kb-adaptive's terminators may take it below 0. Kept in [−2040, 2040]
+  // levels (|g| < 2^25, the bound kb_quadratic.hpp's products assume); past +2040 the output
+  // is saturated either way, and kb-adaptive keeps its terminators above −1785 levels.
   static std::int32_t level_of(std::int64_t i_q30) {
-    constexpr std::int64_t lo = -(std::int64_t{4} << 30), hi = std::int64_t{4} << 30;
+    constexpr std::int64_t lo = -(std::int64_t{8} << 30), hi = std::int64_t{8} << 30;
     const std::int64_t v = i_q30 < lo ? lo : (i_q30 > hi ? hi : i_q30);
     return static_cast<std::int32_t>(fx::detail::round_shift_right(v * 255, 30 - kFrac));
   }

@@ -238,7 +238,7 @@ std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
 }
 }  // namespace
 
-// The error estimate of a cell, Q.15 levels: the worst colour channel, plus for each terminator
+// The error estimate of a cell, Q.14 levels: the worst colour channel, plus for each terminator
 // its N·L error (Q.24) times its heaviest channel weight — max(0, ·) is 1-Lipschitz.
 std::int64_t KbAdaptiveMethod::check_error(const Cell& cell) {
   const std::int32_t* v[15];
@@ -421,7 +421,7 @@ void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
       const std::int64_t d = angle_of(fx::dot<q1_30>(n_cap.centre, l_cap.centre).raw());
       constexpr std::int64_t kLit = 1599875000, kDark = 1771674908;  // 1.49 and 1.65 rad, Q.30
       if (d * 17 / 16 + spread <= kLit || d * 15 / 16 - spread >= kDark) continue;
-      // Weight of a unit of N·L in channel c: kd·O_c·Il_c, in levels Q.15 (as shade() sums it).
+      // Weight of a unit of N·L in channel c: kd·O_c·Il_c, in levels Q.14 (as shade() sums it).
       std::int64_t worst = 0;
       for (int c = 0; c < 3; ++c) {
         const std::int64_t kdo = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
@@ -430,9 +430,9 @@ void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
         worst = w > worst ? w : worst;
       }
       // The unclamped diffuse may take the sampled colour below 0 by the terminators' weights
-      // together: they stay within 765 levels, inside the samples' range (kb_sample.hpp), so
+      // together: they stay within 1785 levels, inside the samples' range (kb_sample.hpp), so
       // that no sample is cut and the per-pixel clamp restores the exact sum.
-      if (worst == 0 || total + worst > (std::int64_t{765} << kSampleFrac)) continue;
+      if (worst == 0 || total + worst > (std::int64_t{1785} << kSampleFrac)) continue;
       total += worst;
       term_worst_[terminators_] = worst;
       mask |= std::uint32_t{1} << li;
@@ -643,12 +643,12 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
   for (std::int32_t x = 0; x < n; ++x) {
     std::int64_t colour[3] = {st[0].v, st[1].v, st[2].v};
     for (int k = 0; k < leaf.crossing; ++k) {
-      // N·L: Q.24 samples stepped in the state's scale (× 2^(40 − 15)); below zero the diffuse
+      // N·L: Q.24 samples stepped in the state's scale (× 2^(40 − 14)); below zero the diffuse
       // was left out of the colours.
       const std::int64_t nl = st[3 + k].v;
       if (nl >= 0) continue;
       const std::int64_t dark = (-nl) >> (kQuadStateFrac - kSampleFrac);  // Q.24
-      for (int c = 0; c < 3; ++c)  // Q.24 × Q.15 -> Q.40
+      for (int c = 0; c < 3; ++c)  // Q.24 × Q.14 -> Q.40
         colour[c] += (dark * leaf.weight[k][c]) << (kQuadStateFrac - 24 - kSampleFrac);
     }
     out[x] = Rgb8{quad_level(colour[0]), quad_level(colour[1]), quad_level(colour[2])};
