@@ -33,8 +33,12 @@ Regenerate: \`bash scripts/results.sh --reps $reps\` (it runs
 Machine: $(nproc) cores, ${cpu:-unknown CPU}, $(g++ --version | head -1), -O2.
 
 The flat, Gouraud and Phong rows are pinned in \`tests/scenes/test_scene_accuracy.cpp\`; the
-Kuijk-Blake rows in \`tests/kb/test_kb_device.cpp\`. docs/KUIJK-BLAKE.md discusses the
-Kuijk-Blake columns, its setup share and its speed targets.
+Kuijk-Blake rows in \`tests/kb/test_kb_device.cpp\`; kb-adaptive is checked against kb and
+its own exact evaluation (\`kb-adaptive-exact\`) on every scene in
+\`tests/kb/test_kb_adaptive_scenes.cpp\`. docs/KUIJK-BLAKE.md discusses the Kuijk-Blake columns,
+their setup share, kb-adaptive and the speed targets; instructions per pixel (a steadier cost
+figure than these times) are in docs/KUIJK-BLAKE.md ("kb-adaptive"), from
+\`bash scripts/instructions.sh\`.
 
 ## One light, all methods
 

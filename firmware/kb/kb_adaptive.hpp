@@ -20,7 +20,6 @@
 #include <cstdint>
 #include <cstring>
 
-#include "firmware/kb/kb_methods.hpp"
 #include "firmware/kb/kb_quadratic.hpp"
 #include "firmware/kb/kb_sample.hpp"
 #include "firmware/method.hpp"
@@ -29,20 +28,18 @@ namespace tp::fw::kb {
 
 // The error budget: every pixel of a cheap path within 1 output level of the exact per-pixel
 // evaluation. The estimate (check points) must stay below it with a margin for what lies between
-// the check points: the worst case measured over 20,000 random triangles is in
-// tests/kb/test_kb_adaptive.cpp.
+// the check points: 0.375 level keeps every pixel of 60,000 random triangles within the budget,
+// 0.61 does not (tests/kb/test_kb_adaptive.cpp).
 inline constexpr std::int32_t kBudgetLevels = 1;
 inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
 inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
-// Over budget and at most this many pixels: exact per pixel (level 1 alone takes 30 more
-// samples than level 0, and each sample costs about what a pixel does).
-inline constexpr std::int64_t kExactAreaPixels = 48;
-inline constexpr std::int64_t kExactArea2 = kExactAreaPixels * 2 * 256;  // Triangle::area2 units
 inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
 // their diffuse is sampled unclamped and max(0, ·) applied per pixel where a cell crosses it.
 inline constexpr int kMaxTerminators = 8;
+// Smaller triangles leave terminators in the samples: a crossed one fails its check and has
+// fewer pixels than refining would take samples, so it goes per pixel anyway.
 inline constexpr std::int64_t kTerminatorMinPixels = 256;
 inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.14 levels), then N·L (Q.24)
 
@@ -102,6 +99,15 @@ class KbAdaptiveMethod final : public ShadingMethod {
   };
   static constexpr int index(int a, int b) {
     return b * (kLatticeRes + 1) - b * (b - 1) / 2 + a;
+  }
+  // Lattice coordinates of quarter point (qu, qv) of cell c: kLatticeRes / (4·2^level) lattice
+  // steps per quarter, from the cell's A vertex (an "up" cell (i, j) has A = (i, j), B = A + (1, 0),
+  // C = A + (0, 1) in units of its level; a "down" cell A = (i + 1, j + 1), B = A − (1, 0),
+  // C = A − (0, 1)).
+  static void cell_point(const Cell& c, int qu, int qv, int& la, int& lb) {
+    const int st = kLatticeRes >> (c.level + 2);
+    la = c.up ? (4 * c.i + qu) * st : (4 * (c.i + 1) - qu) * st;
+    lb = c.up ? (4 * c.j + qv) * st : (4 * (c.j + 1) - qv) * st;
   }
   const std::int32_t* lattice_at(int la, int lb);
   void edge_sample(int la, int lb, int lc, std::int32_t out[3]);

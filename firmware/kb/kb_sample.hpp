@@ -10,8 +10,8 @@
 #include <bit>
 #include <cstdint>
 
-#include "firmware/lighting.hpp"
 #include "firmware/interp.hpp"
+#include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
 #include "fixedpoint/arith.hpp"
 #include "fixedpoint/normalize_fast.hpp"

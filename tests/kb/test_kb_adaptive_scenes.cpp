@@ -126,7 +126,9 @@ TEST(KbAdaptiveDeterminism, SameFrameAfterOtherScenes) {
   const DeviceFrame again = render(device, teapot, "kb-adaptive");
   EXPECT_TRUE(first.rgb == again.rgb);
   for (const auto& [name, value] : first.counters)
-    if (name != "frames") EXPECT_EQ(counter(again, name), value) << name;
+    if (name != "frames") {
+      EXPECT_EQ(counter(again, name), value) << name;
+    }
 }
 
 }  // namespace

@@ -1,0 +1,141 @@
+// kb-adaptive's geometric tests on the caps of directions over a cell (kb_adaptive.hpp): the
+// highlight guard (peak_level) and the terminators (find_terminators). Both bound the normal
+// and the light or halfway direction over a cell by the caps of their values at its vertices.
+#include "firmware/kb/kb_adaptive.hpp"
+
+namespace tp::fw::kb {
+namespace {
+
+// The angle (Q.30 rad) of a cosine c (Q1.30), from t = 1 − c: acos c = √(2t)·(1 + t/12 +
+// 3t²/160 + …), the series cut after three terms (low by 0.8 % at 90°, by 21 % at 180°).
+std::int64_t angle_of(std::int64_t c) {
+  constexpr std::int64_t one = std::int64_t{1} << 30;
+  const std::int64_t t = one - (c > one ? one : (c < -one ? -one : c));  // [0, 2], Q.30
+  using Q60 = fx::Q<2, 60, std::int64_t>;
+  const std::int64_t two_t = 2 * t < 4 * one ? 2 * t : 4 * one - 1;
+  const std::int64_t root = fx::sqrt<q1_30>(Q60::from_raw(two_t << 30)).raw();  // √(2t), Q.30
+  const std::int64_t series = one + t / 12 + ((3 * ((t * t) >> 30)) / 160);
+  return (root * series) >> 30;
+}
+
+// Cap of three unit vectors: its centre and the cosine of its radius (the largest angle from
+// the centre to one of them).
+struct Cap {
+  Vec3u centre;
+  std::int64_t cos_radius = 0;
+};
+Cap cap_of(const Vec3u v[3]) {
+  Cap c;
+  c.centre = fx::normalize_fast(std::int64_t{v[0].x.raw()} + v[1].x.raw() + v[2].x.raw(),
+                                std::int64_t{v[0].y.raw()} + v[1].y.raw() + v[2].y.raw(),
+                                std::int64_t{v[0].z.raw()} + v[1].z.raw() + v[2].z.raw());
+  c.cos_radius = std::int64_t{1} << 30;
+  for (int i = 0; i < 3; ++i) {
+    const std::int64_t d = fx::dot<q1_30>(c.centre, v[i]).raw();
+    if (d < c.cos_radius) c.cos_radius = d;
+  }
+  return c;
+}
+
+}  // namespace
+
+// The lights whose terminator may cross the triangle: N over it stays in the cap of the vertex
+// normals and L in the cap of the vertex L (as in peak_level), so N·L keeps its sign unless the
+// caps' centres are within r_N + r_L of 90° (margins for the angle series). Their diffuse is
+// sampled unclamped and clamped per pixel (add_leaf); beyond kMaxTerminators, the rest keep the
+// clamp in the samples (and the kink: refinement or per-pixel evaluation handles them).
+void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
+  terminators_ = 0;
+  std::uint32_t mask = 0;
+  std::int64_t total = 0;
+  const MaterialCmd& m = ctx_->material;
+  // A small triangle that a terminator crosses is cheaper per pixel (its check fails, and it has
+  // fewer pixels than refining would take samples): only larger ones take the terminators apart.
+  if (m.kd.raw() != 0 && tri.area2 / (2 * 256) > kTerminatorMinPixels) {
+    const Vec3u normals[3] = {tri.v[0].normal, tri.v[1].normal, tri.v[2].normal};
+    const Cap n_cap = cap_of(normals);
+    const std::int64_t r_n = angle_of(n_cap.cos_radius);
+    for (int li = 0; li < point_.lights() && terminators_ < kMaxTerminators; ++li) {
+      const LightState& l = point_.light(li);
+      Vec3u lv[3];
+      for (int v = 0; v < 3; ++v) {
+        const Vec3q16& p = tri.v[v].eye;
+        lv[v] = l.type == LightType::kDirectional
+                    ? l.direction
+                    : fx::normalize_fast(std::int64_t{l.position.x.raw()} - p.x.raw(),
+                                         std::int64_t{l.position.y.raw()} - p.y.raw(),
+                                         std::int64_t{l.position.z.raw()} - p.z.raw());
+      }
+      const Cap l_cap = cap_of(lv);
+      const std::int64_t spread = (r_n + angle_of(l_cap.cos_radius)) * 17 / 16;
+      const std::int64_t d = angle_of(fx::dot<q1_30>(n_cap.centre, l_cap.centre).raw());
+      constexpr std::int64_t kLit = 1599875000, kDark = 1771674908;  // 1.49 and 1.65 rad, Q.30
+      if (d * 17 / 16 + spread <= kLit || d * 15 / 16 - spread >= kDark) continue;
+      // Weight of a unit of N·L in channel c: kd·O_c·Il_c, in levels Q.14 (as shade() sums it).
+      std::int64_t worst = 0;
+      for (int c = 0; c < 3; ++c) {
+        const std::int64_t kdo = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
+        const std::int64_t w = ((kdo * l.color[c].raw()) >> 16) * 255 >> (30 - kSampleFrac);
+        term_weight_[terminators_][c] = w;
+        worst = w > worst ? w : worst;
+      }
+      // The unclamped diffuse may take the sampled colour below 0 by the terminators' weights
+      // together: they stay within 1785 levels, inside the samples' range (kb_sample.hpp), so
+      // that no sample is cut and the per-pixel clamp restores the exact sum.
+      if (worst == 0 || total + worst > (std::int64_t{1785} << kSampleFrac)) continue;
+      total += worst;
+      term_worst_[terminators_] = worst;
+      mask |= std::uint32_t{1} << li;
+      ++terminators_;
+    }
+  }
+  terminator_mask_ = mask;
+}
+
+// The level that cell c's descendants must reach for their samples to see every highlight peak
+// that may lie on c (c.level itself when none can). N over the cell stays in the cap of the
+// normals at its vertices (radius r_N) and H in the cap of its vertices' H (r_H; the central
+// projection of a planar patch from a point light or the eye keeps L and E in the caps of their
+// vertex values). A specular peak, where N = H, can lie on the cell only if the caps' centres
+// are less than r_N + r_H apart; then the sample spacing, about (r_N + r_H) / 2^k in angle, must
+// stay within ω = 0.6/√n, where cos^n has fallen to 0.83 of its peak, so that the check points
+// see the peak's curvature instead of it passing between samples (docs/KUIJK-BLAKE.md).
+int KbAdaptiveMethod::peak_level(const Cell& c) {
+  const MaterialCmd& m = ctx_->material;
+  if (m.ks.raw() == 0 || point_.lights() == 0) return c.level;
+  if (omega_n_ != m.n) {
+    // ω = 0.6 / √n in Q.30: 0.6·2^45 / (√n·2^15).
+    omega_n_ = m.n;
+    const auto root = fx::detail::isqrt_plain(std::uint64_t{m.n} << 30, std::uint64_t{1} << 40).root;
+    omega_ = static_cast<std::int64_t>(21110623253299ULL / (root == 0 ? 1 : root));
+  }
+  PointShader::Point pt[3];
+  Vec3u normals[3];
+  const int corner[3][2] = {{0, 0}, {4, 0}, {0, 4}};
+  for (int v = 0; v < 3; ++v) {
+    int la = 0, lb = 0;
+    cell_point(c, corner[v][0], corner[v][1], la, lb);
+    pt[v] = point_.point(kLatticeRes - la - lb, la, lb);
+    normals[v] = pt[v].normal;
+  }
+  const Cap n_cap = cap_of(normals);
+  const std::int64_t r_n = angle_of(n_cap.cos_radius);
+  int level = c.level;
+  for (int li = 0; li < point_.lights(); ++li) {
+    const LightState& l = point_.light(li);
+    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    Vec3u h[3];
+    for (int v = 0; v < 3; ++v) h[v] = point_.halfway(pt[v], li, point_.light_direction(pt[v], li));
+    const Cap h_cap = cap_of(h);
+    // Radii over-estimated by 1/16, the centre distance under-estimated by 1/16 (the series).
+    const std::int64_t reach = (r_n + angle_of(h_cap.cos_radius)) * 17 / 16;
+    const std::int64_t apart = angle_of(fx::dot<q1_30>(n_cap.centre, h_cap.centre).raw()) * 15 / 16;
+    if (apart - reach >= omega_) continue;  // no peak on the cell
+    int k = c.level;
+    while (k <= kMaxLevel && (reach >> (k - c.level)) > omega_) ++k;
+    if (k > level) level = k;
+  }
+  return level;
+}
+
+}  // namespace tp::fw::kb
