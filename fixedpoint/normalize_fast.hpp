@@ -1,5 +1,6 @@
 // Sample-grade normalisation: the direction of a 64-bit integer vector as a Q1.30 unit vector,
-// in about 40 integer instructions (normalize() takes ~250: four Newton steps in 128 bits).
+// from a seed and two Newton steps in 64-bit products (normalize() takes four Newton steps in
+// 128-bit products, for correct rounding that kb-adaptive's samples do not need).
 //
 //   normalize_fast(x, y, z)  components of any common scale (only the direction matters);
 //                            the zero vector gives the zero vector.
