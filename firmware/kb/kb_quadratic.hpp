@@ -113,7 +113,7 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
     return fx::detail::round_shift_right(a * b, 30);
   };
   QuadStep st;
-  st.v = (q.c0 << kToState) +
+  st.v = q.c0 * (std::int64_t{1} << kToState) +
          fx::detail::round_shift_right(q.cu * u + q.cv * v + q.cuu * sq30(u, u) +
                                            q.cvv * sq30(v, v) + q.cuv * sq30(u, v),
                                        kProd);

@@ -121,9 +121,10 @@ class PointShader {
   Vec3u light_direction(const Point& pt, int i) const {
     const LightState& l = *light_[i];
     if (l.type != LightType::kPoint) return l.direction;
-    return fx::normalize_fast((std::int64_t{l.position.x.raw()} << 30) - pt.p[0],
-                              (std::int64_t{l.position.y.raw()} << 30) - pt.p[1],
-                              (std::int64_t{l.position.z.raw()} << 30) - pt.p[2]);
+    constexpr std::int64_t kToQ46 = std::int64_t{1} << 30;  // Q15.16 -> Q.46 (signed: multiply)
+    return fx::normalize_fast(l.position.x.raw() * kToQ46 - pt.p[0],
+                              l.position.y.raw() * kToQ46 - pt.p[1],
+                              l.position.z.raw() * kToQ46 - pt.p[2]);
   }
   Vec3u halfway(const Point& pt, int i, const Vec3u& lv) const {
     return fixed_h_[i] ? h_[i] : halfway(pt, lv);

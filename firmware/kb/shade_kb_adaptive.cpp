@@ -331,7 +331,7 @@ void KbAdaptiveMethod::choose_cheap_path() {
     ++counters_->adaptive_constant;
     for (LocalQuadratic& c : q) c = LocalQuadratic{c.c0, 0, 0, 0, 0, 0};
     whole_in_range_ = false;  // (filled, or stepped with the clamp by the no-skip variant)
-    const auto level = [](std::int64_t g) { return quad_level(g << (kQuadStateFrac - kSampleFrac)); };
+    const auto level = [](std::int64_t g) { return quad_level(g * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac))); };
     constant_ = Rgb8{level(q[0].c0), level(q[1].c0), level(q[2].c0)};
   } else if (linear) {
     path_ = Path::kLinear;
@@ -446,7 +446,7 @@ void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range
 // s + t = i + j + 1. Points on the triangle's own edges are clamped into it.
 KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1, std::int64_t e2) const {
   const std::int64_t area = tri_->area2, cells = std::int64_t{1} << level;
-  const std::int64_t s = e1 << level, t = e2 << level;
+  const std::int64_t s = e1 * (std::int64_t{1} << level), t = e2 * (std::int64_t{1} << level);
   std::int64_t i = floor_div(s, area), j = floor_div(t, area);
   i = i < 0 ? 0 : (i > cells - 1 ? cells - 1 : i);
   j = j < 0 ? 0 : (j > cells - 1 - i ? cells - 1 - i : j);
@@ -457,8 +457,8 @@ KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1, std
 // Pixels until the point (e1, e2), stepping by (de1_, de2_), leaves cell c.
 std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const {
   const std::int64_t area = tri_->area2;
-  const std::int64_t s = e1 << c.level, t = e2 << c.level;
-  const std::int64_t ds = de1_ << c.level, dt = de2_ << c.level;
+  const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
+  const std::int64_t ds = de1_ * (std::int64_t{1} << c.level), dt = de2_ * (std::int64_t{1} << c.level);
   std::int64_t len = steps_inside(s, ds, c.i * area, (c.i + 1) * area);
   const std::int64_t lt = steps_inside(t, dt, c.j * area, (c.j + 1) * area);
   len = lt < len ? lt : len;
@@ -480,7 +480,7 @@ void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_
                                   std::int32_t n, Rgb8* out) const {
   const Cell& c = leaf.cell;
   const std::int64_t area = tri_->area2;
-  const std::int64_t s = e1 << c.level, t = e2 << c.level;
+  const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
   const std::int64_t nu = c.up ? s - c.i * area : (c.i + 1) * area - s;
   const std::int64_t nv = c.up ? t - c.j * area : (c.j + 1) * area - t;
   const std::int64_t u = fx::div<local_t>(I62::from_raw(nu), I62::from_raw(area)).raw();
@@ -532,7 +532,7 @@ void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t
     std::int32_t g[3];
     point_.at(lam.l[0], lam.l[1], lam.l[2], g);
     const auto level = [](std::int32_t v) {
-      return quad_level(std::int64_t{v} << (kQuadStateFrac - kSampleFrac));
+      return quad_level(std::int64_t{v} * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
     };
     out[x] = Rgb8{level(g[0]), level(g[1]), level(g[2])};
     for (int i = 0; i < 3; ++i) lam.l[i] += step.l[i];
