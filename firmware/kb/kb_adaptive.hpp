@@ -84,14 +84,21 @@ class KbAdaptiveMethod final : public ShadingMethod {
     Cell cell;
     SteppedQuadratic q[3];
     bool exact = false;
-    // Terminators crossing the cell: N·L's quadratic and the weight per channel (levels Q.14
-    // per unit N·L) of max(0, −N·L), the diffuse the unclamped samples left out.
-    int crossing = 0;
-    SteppedQuadratic nl[kMaxTerminators];
-    std::int64_t weight[kMaxTerminators][3];
     bool in_range = false;  // the quadratics stay inside [0, 255]: no clamp per pixel
+    // Terminators crossing the cell: crossings_[first .. first + crossing).
+    std::uint8_t crossing = 0;
+    std::uint16_t first = 0;
   };
   static constexpr int kMaxLeaves = 1 << (2 * kMaxLevel);
+  // A terminator crossing a cell: N·L's quadratic and the weight per channel (levels Q.14 per
+  // unit N·L) of max(0, −N·L), the diffuse the unclamped samples left out. Crossed cells are
+  // few (they lie along the terminator curves); a cell that finds the pool full is evaluated
+  // per pixel instead.
+  struct Crossing {
+    SteppedQuadratic nl;
+    std::int64_t weight[3] = {0, 0, 0};
+  };
+  static constexpr int kMaxCrossings = 256;
   struct Lattice {
     std::int32_t value[kLatticePoints][kChannels] = {};  // see kChannels
     std::uint32_t stamp[kLatticePoints] = {};    // == generation: evaluated for this triangle
@@ -143,6 +150,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.
   Leaf leaves_[kMaxLeaves];
   int leaf_count_ = 0;
+  Crossing crossings_[kMaxCrossings];
+  int crossing_count_ = 0;
   int terminators_ = 0;                      // lights with their terminator handled
   std::uint32_t terminator_mask_ = 0;        // those lights (PointShader's light numbers)
   std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
@@ -155,7 +164,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // Samples on triangle edges, shared with the neighbours: keyed on the edge's vertices (in a
   // canonical order) and the position along it, in units of 1/kMemoScale.
   static constexpr std::int32_t kMemoScale = 1 << 16;
-  static constexpr std::uint32_t kEdgeMemo = 1024;
+  static constexpr std::uint32_t kEdgeMemo = 256;
   struct EdgeMemo {
     VertexKey a, b;
     std::int32_t share = 0;

@@ -258,6 +258,8 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
     for (int ch = 0; ch < 3; ++ch) q[ch] = fit_quadratic(samples_of(c, ch));
     const std::int32_t* points[15];
     if (terminators_ > 0) cell_points(c, points);
+    Crossing crossing[kMaxTerminators];
+    int crossings = 0;
     for (int t = 0; t < terminators_; ++t) {
       const Samples6 samples = samples_of(c, 3 + t);
       const LocalQuadratic nl = fit_quadratic(samples);
@@ -282,11 +284,20 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
         }
         continue;
       }
-      const int k = leaf.crossing++;
-      leaf.nl[k] = prepare_steps(nl, du, dv);
-      for (int ch = 0; ch < 3; ++ch) leaf.weight[k][ch] = term_weight_[t][ch];
+      Crossing& x = crossing[crossings++];
+      x.nl = prepare_steps(nl, du, dv);
+      for (int ch = 0; ch < 3; ++ch) x.weight[ch] = term_weight_[t][ch];
     }
-    if (leaf.crossing > 0) ++counters_->terminator_cells;
+    if (crossings > 0 && crossing_count_ + crossings > kMaxCrossings) {
+      leaf.exact = true;  // the pool is full: per pixel (exact, only dearer)
+      ++counters_->subtriangles_exact;
+      mark(c, static_cast<std::uint16_t>(leaf_count_++));
+      return;
+    }
+    leaf.first = static_cast<std::uint16_t>(crossing_count_);
+    leaf.crossing = static_cast<std::uint8_t>(crossings);
+    for (int k = 0; k < crossings; ++k) crossings_[crossing_count_++] = crossing[k];
+    if (crossings > 0) ++counters_->terminator_cells;
     leaf.in_range = true;
     for (int ch = 0; ch < 3; ++ch) {
       leaf.in_range = leaf.in_range && inside_levels(q[ch]);
@@ -385,6 +396,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     ++counters_->adaptive_quadratic;
     level_ = kMaxLevel;
     leaf_count_ = 0;
+    crossing_count_ = 0;
     add_leaf(kWhole, true);
   } else {
     // The cost of refining, guessed from the guard and from the h³ law of quadratic
@@ -403,6 +415,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     ++counters_->adaptive_subdivided;
     level_ = kMaxLevel;
     leaf_count_ = 0;
+    crossing_count_ = 0;
     refine(kWhole, guard > 0);
   }
   return true;
@@ -497,7 +510,8 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
                                       std::int32_t n, Rgb8* out) const {
   QuadStep st[3 + kMaxTerminators];
   for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n > 1);
-  for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(leaf.nl[k], u, v, n > 1);
+  const Crossing* crossing = crossings_ + leaf.first;
+  for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n > 1);
   const int count = 3 + leaf.crossing;
   for (std::int32_t x = 0; x < n; ++x) {
     std::int64_t colour[3] = {st[0].v, st[1].v, st[2].v};
@@ -508,7 +522,7 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
       if (nl >= 0) continue;
       const std::int64_t dark = (-nl) >> (kQuadStateFrac - kSampleFrac);  // Q.24
       for (int c = 0; c < 3; ++c)  // Q.24 × Q.14 -> Q.40
-        colour[c] += (dark * leaf.weight[k][c]) << (kQuadStateFrac - 24 - kSampleFrac);
+        colour[c] += (dark * crossing[k].weight[c]) << (kQuadStateFrac - 24 - kSampleFrac);
     }
     out[x] = Rgb8{quad_level(colour[0]), quad_level(colour[1]), quad_level(colour[2])};
     for (int i = 0; i < count; ++i) {
