@@ -243,7 +243,7 @@ void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
 // sign over the cell needs no clamp there: lit, its unclamped diffuse is exact; dark, the
 // exact diffuse is 0, so its N·L quadratic times the weights is taken off the colours'.
 void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
-  ++counters_->subtriangles;
+  if (path_ == Path::kSubdivided) ++counters_->subtriangles;  // (not a whole-triangle leaf)
   if (!quadratic) ++counters_->subtriangles_exact;
   Leaf& leaf = leaves_[leaf_count_];
   leaf.cell = c;

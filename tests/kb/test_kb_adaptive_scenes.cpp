@@ -9,33 +9,20 @@
 // The measured values are printed (one line per scene).
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "host/device_renderer.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
+#include "tests/kb/scene_frames.hpp"
 
 namespace tp::host {
 namespace {
 
-Scene scene_at(const std::string& name) {
-  return load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
-}
-
-DeviceFrame render(DeviceRenderer& device, Scene scene, const std::string& method) {
-  scene.method = method;
-  device.set_scene(scene);
-  return device.render(0.0);
-}
-
-std::uint64_t counter(const DeviceFrame& f, const std::string& name) {
-  for (const auto& [n, v] : f.counters)
-    if (n == name) return v;
-  ADD_FAILURE() << "no counter " << name;
-  return 0;
-}
+using kbtest::counter;
+using kbtest::render;
+using kbtest::scene_named;
 
 Comparison against_phong(DeviceRenderer& device, const DeviceFrame& f) {
   const ReferenceFrame ref = device.render_reference(0.0, Interpolation::Phong);
@@ -47,7 +34,7 @@ class KbAdaptiveScene : public ::testing::TestWithParam<const char*> {};
 TEST_P(KbAdaptiveScene, SkippingBudgetAccuracy) {
   const std::string name = GetParam();
   const bool stress = name.rfind("stress/", 0) == 0;
-  const Scene scene = scene_at(name);
+  const Scene scene = scene_named(name);
   DeviceRenderer device(scene.width, scene.height);
   const DeviceFrame adaptive = render(device, scene, "kb-adaptive");
   const DeviceFrame no_skip = render(device, scene, "kb-adaptive-noskip");
@@ -93,32 +80,23 @@ TEST_P(KbAdaptiveScene, SkippingBudgetAccuracy) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Scenes, KbAdaptiveScene,
-    ::testing::Values("sphere-32", "sphere-32-l2", "sphere-32-l4", "sphere-32-l8", "sphere-512",
-                      "sphere-512-l2", "sphere-512-l4", "sphere-512-l8", "sphere-40",
-                      "sphere-40-l2", "sphere-40-l4", "sphere-40-l8", "dodecahedron-30",
-                      "dodecahedron-30-l2", "dodecahedron-30-l4", "dodecahedron-30-l8",
-                      "triangle", "triangle-l2", "triangle-l4", "triangle-l8", "teapot",
-                      "teapot-l2", "teapot-l4", "teapot-l8", "stress/triangle-near-1",
-                      "stress/triangle-near-2", "stress/triangle-near-5",
-                      "stress/triangle-near-16", "stress/sphere-512-near-1",
-                      "stress/sphere-512-near-2", "stress/sphere-512-near-5"),
-    [](const auto& info) {
-      std::string n = info.param;
-      std::replace(n.begin(), n.end(), '-', '_');
-      std::replace(n.begin(), n.end(), '/', '_');
-      return n;
-    });
+INSTANTIATE_TEST_SUITE_P(PaperScenes, KbAdaptiveScene, ::testing::ValuesIn(kbtest::kPaperScenes),
+                         [](const auto& info) { return kbtest::test_name_of(info.param); });
+INSTANTIATE_TEST_SUITE_P(StressScenes, KbAdaptiveScene,
+                         ::testing::Values("stress/triangle-near-1", "stress/triangle-near-2",
+                                           "stress/triangle-near-5", "stress/triangle-near-16",
+                                           "stress/sphere-512-near-1", "stress/sphere-512-near-2",
+                                           "stress/sphere-512-near-5"),
+                         [](const auto& info) { return kbtest::test_name_of(info.param); });
 
 // The method keeps per-frame state (its lattice stamps, the highlight guard's ω for the last
 // exponent): a frame must not depend on what was drawn before it.
 TEST(KbAdaptiveDeterminism, SameFrameAfterOtherScenes) {
-  const Scene teapot = scene_at("teapot-l2");
+  const Scene teapot = scene_named("teapot-l2");
   DeviceRenderer device(teapot.width, teapot.height);
   const DeviceFrame first = render(device, teapot, "kb-adaptive");
   for (const char* other : {"sphere-512-l8", "triangle", "stress/triangle-near-16"}) {
-    Scene s = scene_at(other);
+    Scene s = scene_named(other);
     s.width = teapot.width;
     s.height = teapot.height;
     (void)render(device, s, "kb-adaptive");

@@ -17,26 +17,14 @@
 #include "host/device_renderer.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
+#include "tests/kb/scene_frames.hpp"
 
 namespace tp::host {
 namespace {
 
-Scene scene_named(const std::string& name) {
-  return load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
-}
-
-DeviceFrame render(DeviceRenderer& device, Scene scene, const std::string& method) {
-  scene.method = method;
-  device.set_scene(scene);
-  return device.render(0.0);
-}
-
-std::uint64_t counter(const DeviceFrame& f, const std::string& name) {
-  for (const auto& [n, v] : f.counters)
-    if (n == name) return v;
-  ADD_FAILURE() << "no counter " << name;
-  return 0;
-}
+using kbtest::counter;
+using kbtest::render;
+using kbtest::scene_named;
 
 // --- Skipping: bit-identical images, on every paper scene with 1, 2, 4 and 8 lights ---------
 
@@ -65,19 +53,8 @@ TEST_P(KbSkipping, ImageIdenticalWithSkippingOff) {
   EXPECT_LE(evaluated_on, evaluated_off);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    PaperScenes, KbSkipping,
-    ::testing::Values("sphere-32", "sphere-32-l2", "sphere-32-l4", "sphere-32-l8", "sphere-512",
-                      "sphere-512-l2", "sphere-512-l4", "sphere-512-l8", "sphere-40",
-                      "sphere-40-l2", "sphere-40-l4", "sphere-40-l8", "dodecahedron-30",
-                      "dodecahedron-30-l2", "dodecahedron-30-l4", "dodecahedron-30-l8",
-                      "triangle", "triangle-l2", "triangle-l4", "triangle-l8", "teapot",
-                      "teapot-l2", "teapot-l4", "teapot-l8"),
-    [](const auto& info) {
-      std::string n = info.param;
-      std::replace(n.begin(), n.end(), '-', '_');
-      return n;
-    });
+INSTANTIATE_TEST_SUITE_P(PaperScenes, KbSkipping, ::testing::ValuesIn(kbtest::kPaperScenes),
+                         [](const auto& info) { return kbtest::test_name_of(info.param); });
 
 // --- Accuracy against the double references ---------------------------------------------
 
