@@ -99,7 +99,10 @@ std::string DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
     return "unknown scene '" + name + "'";
   try {
-    return install(host::load_scene(dir_ / (name + ".json")), name);
+    // The viewer keeps the method it shows; the scene file's own "method" is for the CLI.
+    host::Scene sc = host::load_scene(dir_ / (name + ".json"));
+    sc.method = settings_.method;
+    return install(std::move(sc), name);
   } catch (const std::exception& e) {
     return e.what();
   }
