@@ -1,4 +1,4 @@
-// Performance counters, like a GPU's hardware counters (DESIGN §4). Reset by clear(), read by
+// Performance counters, like a GPU's hardware counters. Reset by clear(), read by
 // the host at any time. Geometry and raster counters are filled by the pipeline; the work
 // counters are filled by the methods that define them (a method that does not use one leaves
 // it at zero).

@@ -19,17 +19,6 @@ Vec3u light_direction(const LightState& l, const Vec3q16& p) {
 
 }  // namespace
 
-q1_30 power(q1_30 x, std::uint32_t n) {
-  q1_30 result = q1_30::one();
-  q1_30 base = x;
-  while (n != 0) {
-    if ((n & 1u) != 0) result = mul(result, base);
-    n >>= 1;
-    if (n != 0) base = mul(base, base);
-  }
-  return result;
-}
-
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) {
   const MaterialCmd& m = ctx.material;
   Counters& cnt = *ctx.counters;

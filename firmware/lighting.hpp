@@ -1,4 +1,4 @@
-// Blinn-Phong in fixed point, per colour channel c (DESIGN §6, docs/CONVENTIONS.md):
+// Blinn-Phong in fixed point, per colour channel c (docs/CONVENTIONS.md):
 //   I_c = ka O_c + sum_lights Il_c [ kd O_c max(0, N.L) + ks max(0, N.H)^n ],  H = norm(L + V)
 // (specular not gated by N.L). Ia = 1. Shared by flat, Gouraud and Phong.
 //
@@ -16,8 +16,21 @@ struct Radiance {
   std::int64_t c[3];  // I_c, Q.30, not yet clamped
 };
 
-// x^n by repeated squaring, x in [0, 1] (q1_30), n >= 1; each product rounded to q1_30.
-q1_30 power(q1_30 x, std::uint32_t n);
+// x^n by repeated squaring, x in [0, 1] (q1_30; every caller clamps, a dot of unit vectors may
+// exceed 1 by a few LSB), n >= 1; each product rounded to q1_30, half up. For such x that is the
+// rounding of fx::mul_sat (ties away from zero = half up for non-negative values) without its
+// saturation, which no product reaches (x^n < 2). Inline: kb-adaptive takes it at every sample
+// and exact pixel (kb/kb_sample.hpp).
+inline q1_30 power(q1_30 x, std::uint32_t n) {
+  const auto mul = [](std::int64_t a, std::int64_t b) { return (a * b + (std::int64_t{1} << 29)) >> 30; };
+  std::int64_t result = std::int64_t{1} << 30, base = x.raw();
+  while (n != 0) {
+    if ((n & 1u) != 0) result = mul(result, base);
+    n >>= 1;
+    if (n != 0) base = mul(base, base);
+  }
+  return q1_30::from_raw(static_cast<std::int32_t>(result));
+}
 
 // Lighting at eye-space point p with unit normal n.
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n);

@@ -33,7 +33,8 @@ enum class Error : std::uint32_t {
 
 enum class PixelFormat : std::uint32_t { kRgb888 = 0, kRgb565 = 1 };
 
-// Shading methods (DESIGN §6). Reserved ids are rejected by set_method until implemented.
+// Shading methods (their CLI names: host/device_renderer.cpp). Reserved ids are rejected by
+// set_method until implemented.
 enum class Method : std::uint32_t {
   kFlat = 1,
   kGouraud = 2,

@@ -153,7 +153,7 @@ class PointShader {
         const q1_30 ndl = open ? dot_l : positive(dot_l);
         const q1_30 ndh = positive(fx::dot<q1_30>(pt.normal, h));
         if (skipping_ && ndl.raw() == 0 && ndh.raw() == 0) continue;  // adds exactly 0
-        const std::int64_t spec = unit_mul(m.ks.raw(), unit_power(ndh.raw(), m.n));
+        const std::int64_t spec = fx::mul_sat<q1_30>(m.ks, power(ndh, m.n)).raw();
         for (int c = 0; c < 3; ++c) {
           const std::int64_t term = std::int64_t{fx::mul_sat<q1_30>(diffuse_[c], ndl).raw()} + spec;
           acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
@@ -171,21 +171,6 @@ class PointShader {
 
  private:
   static q1_30 positive(q1_30 x) { return x.raw() < 0 ? q1_30::zero() : x; }
-  // Products of Q1.30 values in [0, 1], rounded half up: the same bits as fx::mul_sat (whose
-  // ties-away rounding is half up for non-negative values, and which never saturates here).
-  static std::int64_t unit_mul(std::int64_t a, std::int64_t b) {
-    return (a * b + (std::int64_t{1} << 29)) >> 30;
-  }
-  // x^n by repeated squaring, each product rounded: the same bits as lighting.hpp's power().
-  static std::int64_t unit_power(std::int64_t x, std::uint32_t n) {
-    std::int64_t result = std::int64_t{1} << 30, base = x;
-    while (n != 0) {
-      if ((n & 1u) != 0) result = unit_mul(result, base);
-      n >>= 1;
-      if (n != 0) base = unit_mul(base, base);
-    }
-    return result;
-  }
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
   static int shift_for(std::int64_t bits) {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
