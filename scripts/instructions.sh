@@ -3,6 +3,9 @@
 # benchmark, not a test): callgrind counts the instructions executed inside
 # tp::fw::Device::draw* while the release CLI renders the scene once; the count is divided by
 # the frame's pixels_written counter. Instruction counts are repeatable on a shared machine.
+# It runs tinyphong-draw (bench/draw.cpp): the same DeviceRenderer::render as `tinyphong render`,
+# without the image library, whose dependency libhwy executes rdtscp at load time — an
+# instruction valgrind refuses on processors that do not advertise it.
 #
 # Usage: bash scripts/instructions.sh [--scenes a,b,...] [--methods m1,m2,...] [--markdown]
 #   defaults: every paper scene and its -l2/-l4/-l8 variants (scenes/*.json), and the methods
@@ -21,8 +24,8 @@ while [ $# -gt 0 ]; do
 done
 command -v valgrind >/dev/null || { echo "instructions.sh: valgrind is needed (apt-get install valgrind)" >&2; exit 1; }
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)" --target tinyphong >/dev/null
-bin=build/release/host/tinyphong
+cmake --build --preset release -j "$(nproc)" --target tinyphong-draw >/dev/null
+bin=build/release/bench/tinyphong-draw
 if [ -z "$scenes" ]; then
   scenes=$(for f in scenes/*.json scenes/stress/*.json; do [ -f "$f" ] && echo "${f#scenes/}"; done | sed 's/\.json$//' | paste -sd, -)
 fi
@@ -38,7 +41,7 @@ for s in ${scenes//,/ }; do
   for m in ${methods//,/ }; do
     out="$tmp/cg.out"
     log=$(valgrind --tool=callgrind --toggle-collect='tp::fw::Device::draw*' \
-      --callgrind-out-file="$out" "$bin" render "scenes/$s.json" --method "$m" -o "$tmp/img.png" 2>/dev/null)
+      --callgrind-out-file="$out" "$bin" "scenes/$s.json" --method "$m" 2>/dev/null)
     px=$(echo "$log" | awk '$1 == "pixels_written" {print $3}')
     ir=$(awk '/^summary:/ {print $2}' "$out")
     if [ -z "$px" ] || [ "$px" = 0 ] || [ -z "$ir" ]; then row+=" — |"; continue; fi

@@ -125,7 +125,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded);
   void mark(const Cell& c, std::uint16_t leaf);
-  void choose_cheap_path();
+  void choose_cheap_path(std::int64_t err0);
   int peak_level(const Cell& c);
   void add_leaf(const Cell& c, bool quadratic);
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;

@@ -15,6 +15,7 @@
 // a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "firmware/cosn_fd.hpp"
@@ -64,6 +65,22 @@ struct QuarterPoint {
 };
 inline constexpr QuarterPoint kCheckPoints[9] = {{1, 0}, {3, 0}, {0, 1}, {0, 3}, {3, 1},
                                                  {1, 3}, {1, 1}, {2, 1}, {1, 2}};
+
+// quadratic_x8_at's weights of the six samples (A, B, C, AB, BC, CA) at each check point, formed
+// once: the check takes them at every cell of every triangle.
+struct SampleWeights {
+  std::int64_t w[6];
+};
+inline constexpr auto kCheckWeights = [] {
+  std::array<SampleWeights, 9> t{};
+  for (int k = 0; k < 9; ++k)
+    for (int j = 0; j < 6; ++j) {
+      Samples6 unit{};
+      unit.g[j] = 1;
+      t[static_cast<std::size_t>(k)].w[j] = quadratic_x8_at(unit, kCheckPoints[k].qu, kCheckPoints[k].qv);
+    }
+  return t;
+}();
 
 // Forward-differencing state of one channel along a span piece.
 struct QuadStep {

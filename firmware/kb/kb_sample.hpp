@@ -18,6 +18,19 @@
 
 namespace tp::fw::kb {
 
+// a·b of two vectors of magnitude <= 1 + 2^-28 (Q1.30), rounded half away from zero: the same
+// value as fx::dot<q1_30> (the exact sum, |.| < 3·2^60, fits 64 bits; no saturation is possible),
+// without its general 128-bit-safe path. Samples take several per light.
+inline std::int64_t dot_unit(const Vec3u& a, const Vec3u& b) {
+  return fx::detail::round_shift_right(std::int64_t{a.x.raw()} * b.x.raw() + std::int64_t{a.y.raw()} * b.y.raw() +
+                                           std::int64_t{a.z.raw()} * b.z.raw(),
+                                       30);
+}
+
+// a·b in Q1.30 of a in [0, 2) and b in (−2, 2) (Q1.30), rounded half away from zero: fx::mul_sat's
+// value where no saturation can occur (|a·b| < 2 here: material weights and cosines).
+inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); }
+
 class PointShader {
  public:
   static constexpr int kFrac = 14;  // output: levels, Q.14
@@ -33,7 +46,7 @@ class PointShader {
     const MaterialCmd& m = ctx.material;
     for (int c = 0; c < 3; ++c) {
       ambient_[c] = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
-      diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]);
+      diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
     }
     lights_ = 0;
     for (std::size_t i = 0; i < kMaxLights; ++i) {
@@ -147,15 +160,17 @@ class PointShader {
         const LightState& l = *light_[li];
         const Vec3u lv = light_direction(pt, li);
         const Vec3u h = halfway(pt, li, lv);
-        const q1_30 dot_l = fx::dot<q1_30>(pt.normal, lv);
+        const std::int64_t dot_l = dot_unit(pt.normal, lv);
         const bool open = ((unclamped >> li) & 1u) != 0;
-        if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l.raw(), 6));
-        const q1_30 ndl = open ? dot_l : positive(dot_l);
-        const q1_30 ndh = positive(fx::dot<q1_30>(pt.normal, h));
-        if (skipping_ && ndl.raw() == 0 && ndh.raw() == 0) continue;  // adds exactly 0
-        const std::int64_t spec = fx::mul_sat<q1_30>(m.ks, power(ndh, m.n)).raw();
+        if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l, 6));
+        const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
+        const std::int64_t dot_h = dot_unit(pt.normal, h);
+        const std::int64_t ndh = dot_h > 0 ? dot_h : 0;
+        if (skipping_ && ndl == 0 && ndh == 0) continue;  // adds exactly 0
+        const std::int64_t spec =
+            mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
         for (int c = 0; c < 3; ++c) {
-          const std::int64_t term = std::int64_t{fx::mul_sat<q1_30>(diffuse_[c], ndl).raw()} + spec;
+          const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
           acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
         }
       }
@@ -170,7 +185,6 @@ class PointShader {
   }
 
  private:
-  static q1_30 positive(q1_30 x) { return x.raw() < 0 ? q1_30::zero() : x; }
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
   static int shift_for(std::int64_t bits) {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
@@ -192,7 +206,7 @@ class PointShader {
   bool skipping_ = true;
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
-  q1_30 diffuse_[3];
+  std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30
   const LightState* light_[kMaxLights] = {};
   bool fixed_h_[kMaxLights] = {};
   Vec3u h_[kMaxLights];

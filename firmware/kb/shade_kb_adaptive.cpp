@@ -185,11 +185,12 @@ void KbAdaptiveMethod::cell_points(const Cell& cell, const std::int32_t* v[15]) 
 namespace {
 // max over the nine check points of |g − q| for channel ch (rounded up).
 std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
-  const Samples6 s{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}};
+  const std::int64_t s[6] = {v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]};
   std::int64_t worst = 0;
   for (int k = 0; k < 9; ++k) {
-    const QuarterPoint& p = kCheckPoints[k];
-    const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - quadratic_x8_at(s, p.qu, p.qv));
+    const std::int64_t* w = kCheckWeights[static_cast<std::size_t>(k)].w;
+    const std::int64_t q8 = w[0] * s[0] + w[1] * s[1] + w[2] * s[2] + w[3] * s[3] + w[4] * s[4] + w[5] * s[5];
+    const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - q8);  // 8·(g − q)
     if (e > worst) worst = e;
   }
   return (worst + 7) / 8;
@@ -324,9 +325,9 @@ void KbAdaptiveMethod::refine(const Cell& c, bool guarded) {
   for (const Cell& k : kids) refine(k, guarded);
 }
 
-// Level 0 passed: the simplest of constant, linear and quadratic within the budget.
-void KbAdaptiveMethod::choose_cheap_path() {
-  const std::int64_t err0 = check_error(kWhole);
+// Level 0 passed its check (estimate err0): the simplest of constant, linear and quadratic
+// within the budget.
+void KbAdaptiveMethod::choose_cheap_path(std::int64_t err0) {
   bool constant = true, linear = true;
   LocalQuadratic q[3];
   whole_in_range_ = true;
@@ -389,7 +390,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const int guard = peak_level(kWhole);
   const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
   if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
-    choose_cheap_path();
+    choose_cheap_path(err0);
   } else if (guard == 0 && err0 <= kEstimateBudget) {
     // One quadratic, with the terminators' clamps: the triangle is its own leaf.
     path_ = Path::kQuadratic;
