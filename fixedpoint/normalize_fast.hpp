@@ -4,6 +4,8 @@
 //
 //   normalize_fast(x, y, z)  components of any common scale (only the direction matters);
 //                            the zero vector gives the zero vector.
+//   rsqrt_fast(s)            1/√s of a positive integer, as a mantissa and a shift (the same
+//                            seed and Newton steps), for a cosine divided by a length.
 //
 // How: the components are cut to 30 bits (as firmware/vecmath.hpp's normalize_wide does), the
 // squared length s (exact, < 3·2^60) is brought to t = s·2^-e in [2^30, 2^32) with e even, and
@@ -41,6 +43,28 @@ inline constexpr std::array<std::uint32_t, 192> rsqrt_fast_seed = [] {
 
 }  // namespace detail
 
+// 1/√s of an integer 0 < s < 2^62 as a Q2.30 mantissa r in (2^30, 2^31] and a shift >= 1: for
+// an integer c of the units that s squares, (c·r) >> shift is c/√s in Q1.30 (|c·r| < 2^63 is
+// the caller's to keep). The seed and two Newton steps of normalize_fast: relative error < 2^-28.
+struct RsqrtFast {
+  std::int64_t r = 0;
+  int shift = 0;
+};
+inline RsqrtFast rsqrt_fast(detail::u64 s) {
+  using detail::u64;
+  int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
+  e += e & 1;                                         // ... or [2^30, 2^31) for an even e
+  const u64 t = e >= 0 ? s >> e : s << -e;
+  u64 r = detail::rsqrt_fast_seed[static_cast<std::size_t>((t >> 24) - 64)];  // Q2.30
+  for (int it = 0; it < 2; ++it) {
+    const u64 r2 = (r * r) >> 30;                 // Q.30, <= 2^32
+    const u64 tr2 = (t * r2) >> 32;               // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)
+    r = (r * ((u64{3} << 30) - tr2)) >> 31;       // r (3 − T r²) / 2, Q2.30
+  }
+  // 1/√s = r·2^-30 · 2^-(16 + e/2) · 2^30: c·r >> (16 + e/2), >= 1 since e >= -30.
+  return RsqrtFast{static_cast<std::int64_t>(r), 16 + e / 2};
+}
+
 inline Vec3<q1_30> normalize_fast(std::int64_t x, std::int64_t y, std::int64_t z) {
   using detail::u64;
   const auto mag = [](std::int64_t v) { return static_cast<u64>(v < 0 ? -v : v); };
@@ -52,21 +76,11 @@ inline Vec3<q1_30> normalize_fast(std::int64_t x, std::int64_t y, std::int64_t z
   const std::int64_t cx = (x + bias) >> cut, cy = (y + bias) >> cut, cz = (z + bias) >> cut;
   const u64 s = static_cast<u64>(cx * cx) + static_cast<u64>(cy * cy) + static_cast<u64>(cz * cz);
   if (s == 0) return Vec3<q1_30>{q1_30::zero(), q1_30::zero(), q1_30::zero()};
-  int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
-  e += e & 1;                                         // ... or [2^30, 2^31) for an even e
-  const u64 t = e >= 0 ? s >> e : s << -e;
-  u64 r = detail::rsqrt_fast_seed[static_cast<std::size_t>((t >> 24) - 64)];  // Q2.30
-  for (int it = 0; it < 2; ++it) {
-    const u64 r2 = (r * r) >> 30;                 // Q.30, <= 2^32
-    const u64 tr2 = (t * r2) >> 32;               // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)
-    r = (r * ((u64{3} << 30) - tr2)) >> 31;       // r (3 − T r²) / 2, Q2.30
-  }
-  // 1/|c| = r·2^-30 · 2^-(16 + e/2) · 2^30: component·r >> (16 + e/2), >= 1 since e >= -30.
   // |component·r| <= 2^61; the result is within 2^30 (1 + 2^-28): no saturation.
-  const int sh = 16 + e / 2;
-  const std::int64_t half = std::int64_t{1} << (sh - 1), rr = static_cast<std::int64_t>(r);
+  const RsqrtFast inv = rsqrt_fast(s);
+  const std::int64_t half = std::int64_t{1} << (inv.shift - 1);
   const auto unit = [&](std::int64_t c) {
-    return q1_30::from_raw(static_cast<std::int32_t>((c * rr + half) >> sh));
+    return q1_30::from_raw(static_cast<std::int32_t>((c * inv.r + half) >> inv.shift));
   };
   return Vec3<q1_30>{unit(cx), unit(cy), unit(cz)};
 }

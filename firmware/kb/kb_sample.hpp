@@ -64,10 +64,14 @@ class PointShader {
     }
   }
 
-  // The geometry at a point: normal, eye direction and eye-space position (Q.46).
+  // The geometry at a point: normal, eye direction, and the eye-space position as s·P (p, in
+  // the eye coordinates' Q15.16 units times s): the directions at the point depend on P only
+  // through P − X for a fixed X, whose direction is that of s·X − p, so no division is needed.
   struct Point {
     Vec3u normal, eye;
     std::int64_t p[3] = {0, 0, 0};
+    std::int64_t s = 0;          // the scale of p, < 2^30
+    std::int64_t normal_eye = 0;  // N·E, Q1.30
     bool inside = false;
   };
 
@@ -93,34 +97,36 @@ class PointShader {
   }
 
  private:
-  // The point with hyperbolic weights mu (each >= 0, sum < 2^62).
+  // The point with hyperbolic weights mu (each >= 0, sum < 2^62). The weights are brought to a
+  // sum in [2^29, 2^30) by a shift alone (exact when shifted up, 2^-29 relative when down): N,
+  // the eye direction and L are directions of sums weighted by them, whatever their scale, so
+  // the barycentrics are never divided out.
   Point point_of(std::int64_t mu[3]) const {
     const Triangle& t = *tri_;
     Point pt;
     std::int64_t sum = mu[0] + mu[1] + mu[2];
     if (sum == 0) return pt;  // not inside the triangle
-    // b_i = mu_i / sum by one reciprocal: the weights scaled so that sum is in [2^30, 2^31)
-    // (exactly when shifted up, rounding 2^-31 relative when shifted down), inv = 2^61 / sum
-    // in (2^30, 2^31], b_i = mu_i·inv / 2^31 in Q1.30 (relative error < 2^-29).
-    const int bw = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(sum)));
-    for (int i = 0; i < 3; ++i) mu[i] = bw > 31 ? mu[i] >> (bw - 31) : mu[i] << (31 - bw);
-    sum = bw > 31 ? sum >> (bw - 31) : sum << (31 - bw);
-    const std::int64_t inv = (std::int64_t{1} << 61) / sum;
+    const int sh = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(sum))) - 30;
+    for (int i = 0; i < 3; ++i) mu[i] = sh > 0 ? mu[i] >> sh : mu[i] << -sh;
+    pt.s = mu[0] + mu[1] + mu[2];
+    // n: |mu|·2^30 <= 2^60; p: |mu|·2^31 <= 2^61.
     std::int64_t n[3] = {0, 0, 0};
     for (int i = 0; i < 3; ++i) {
-      if (mu[i] == 0) continue;
-      const std::int64_t w = (mu[i] * inv) >> 31;
-      n[0] += w * t.v[i].normal.x.raw();
-      n[1] += w * t.v[i].normal.y.raw();
-      n[2] += w * t.v[i].normal.z.raw();
-      pt.p[0] += w * t.v[i].eye.x.raw();
-      pt.p[1] += w * t.v[i].eye.y.raw();
-      pt.p[2] += w * t.v[i].eye.z.raw();
+      n[0] += mu[i] * t.v[i].normal.x.raw();
+      n[1] += mu[i] * t.v[i].normal.y.raw();
+      n[2] += mu[i] * t.v[i].normal.z.raw();
+      pt.p[0] += mu[i] * t.v[i].eye.x.raw();
+      pt.p[1] += mu[i] * t.v[i].eye.y.raw();
+      pt.p[2] += mu[i] * t.v[i].eye.z.raw();
     }
-    // n: Q.60, p: eye-space position in Q.46 (|p| < 2^60).
     pt.normal = fx::normalize_fast(n[0], n[1], n[2]);
-    pt.eye = Vec3u{q1_30::zero(), q1_30::zero(), q1_30::one()};
-    if (ctx_->eye == EyeMode::kFinite) pt.eye = fx::normalize_fast(-pt.p[0], -pt.p[1], -pt.p[2]);
+    if (ctx_->eye == EyeMode::kFinite) {
+      pt.eye = fx::normalize_fast(-pt.p[0], -pt.p[1], -pt.p[2]);
+      pt.normal_eye = dot_unit(pt.normal, pt.eye);
+    } else {
+      pt.eye = Vec3u{q1_30::zero(), q1_30::zero(), q1_30::one()};
+      pt.normal_eye = pt.normal.z.raw();
+    }
     pt.inside = true;
     return pt;
   }
@@ -134,10 +140,9 @@ class PointShader {
   Vec3u light_direction(const Point& pt, int i) const {
     const LightState& l = *light_[i];
     if (l.type != LightType::kPoint) return l.direction;
-    constexpr std::int64_t kToQ46 = std::int64_t{1} << 30;  // Q15.16 -> Q.46 (signed: multiply)
-    return fx::normalize_fast(l.position.x.raw() * kToQ46 - pt.p[0],
-                              l.position.y.raw() * kToQ46 - pt.p[1],
-                              l.position.z.raw() * kToQ46 - pt.p[2]);
+    // s·L_pos − s·P: |.| < 2^31·2^30 + 2^61 = 2^62.
+    return fx::normalize_fast(l.position.x.raw() * pt.s - pt.p[0], l.position.y.raw() * pt.s - pt.p[1],
+                              l.position.z.raw() * pt.s - pt.p[2]);
   }
   Vec3u halfway(const Point& pt, int i, const Vec3u& lv) const {
     return fixed_h_[i] ? h_[i] : halfway(pt, lv);
@@ -146,6 +151,24 @@ class PointShader {
     return fx::normalize_fast(std::int64_t{lv.x.raw()} + pt.eye.x.raw(),
                               std::int64_t{lv.y.raw()} + pt.eye.y.raw(),
                               std::int64_t{lv.z.raw()} + pt.eye.z.raw());
+  }
+  // N·H (Q1.30, clamped to [0, 1]) without forming H: N·(L + E) / |L + E|, with
+  // |L + E|² = 2 + 2 L·E — one scalar reciprocal root instead of a normalised vector. Where L
+  // and E are opposite, H is undefined; the vector form gives 0 there, and so does this.
+  std::int64_t normal_halfway(const Point& pt, int i, const Vec3u& lv, std::int64_t normal_light) const {
+    if (fixed_h_[i]) {
+      const std::int64_t d = dot_unit(pt.normal, h_[i]);
+      return d > 0 ? d : 0;
+    }
+    const std::int64_t light_eye = ctx_->eye == EyeMode::kFinite ? dot_unit(lv, pt.eye) : lv.z.raw();
+    const std::int64_t length2 = (std::int64_t{2} << 30) + 2 * light_eye;  // |L + E|², Q.30
+    const std::int64_t x = normal_light + pt.normal_eye;                   // N·(L + E), Q.30
+    if (length2 <= 0 || x <= 0) return 0;
+    // x / √(length2·2^-30) in Q1.30: (x·r) >> shift is x/√length2 in Q1.30, times 2^15.
+    const fx::RsqrtFast inv = fx::rsqrt_fast(static_cast<std::uint64_t>(length2));
+    const int sh = inv.shift + 15;
+    const std::int64_t d = (x * inv.r + (std::int64_t{1} << (sh - 1))) >> sh;
+    return d < (std::int64_t{1} << 30) ? d : (std::int64_t{1} << 30);
   }
 
   // The level (Q.14, before the output clamp) of each channel at the point: out[0..2]. Lights of
@@ -159,13 +182,11 @@ class PointShader {
       for (int li = 0; li < lights_; ++li) {
         const LightState& l = *light_[li];
         const Vec3u lv = light_direction(pt, li);
-        const Vec3u h = halfway(pt, li, lv);
         const std::int64_t dot_l = dot_unit(pt.normal, lv);
         const bool open = ((unclamped >> li) & 1u) != 0;
         if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l, 6));
         const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
-        const std::int64_t dot_h = dot_unit(pt.normal, h);
-        const std::int64_t ndh = dot_h > 0 ? dot_h : 0;
+        const std::int64_t ndh = normal_halfway(pt, li, lv, dot_l);
         if (skipping_ && ndl == 0 && ndh == 0) continue;  // adds exactly 0
         const std::int64_t spec =
             mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
