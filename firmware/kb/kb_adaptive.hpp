@@ -41,6 +41,9 @@ inline constexpr int kMaxTerminators = 8;
 // Smaller triangles leave terminators in the samples: a crossed one fails its check and has
 // fewer pixels than refining would take samples, so it goes per pixel anyway.
 inline constexpr std::int64_t kTerminatorMinPixels = 256;
+// Triangles below 32 pixels (area2 counts 512 per pixel) go straight to per-pixel evaluation:
+// their samples and check would cost more (docs/KUIJK-BLAKE.md, "kb-adaptive").
+inline constexpr std::int64_t kDirectExactArea2 = std::int64_t{32} * 512;
 inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.14 levels), then N·L (Q.24)
 
 // kAdaptive: the method. kNoSkip: the same choices, but constant triangles are stepped and every
@@ -118,6 +121,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   }
   const std::int32_t* lattice_at(int la, int lb);
   void edge_sample(int la, int lb, int lc, std::int32_t out[3]);
+  void prepare_edge_keys(const Triangle& tri);
   void find_terminators(const Triangle& tri);
   void cell_points(const Cell& c, const std::int32_t* v[15]);
   void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n, Rgb8* out) const;
@@ -172,6 +176,12 @@ class KbAdaptiveMethod final : public ShadingMethod {
     bool valid = false;
   };
   EdgeMemo edge_memo_[kEdgeMemo];
+  struct EdgeKeys {
+    VertexKey key[3];
+    bool swapped[3] = {false, false, false};
+    std::uint32_t hash_first[3] = {0, 0, 0}, hash_second[3] = {0, 0, 0};
+  };
+  EdgeKeys edge_;  // the current triangle's (prepare_edge_keys)
   // The shading state the memo's values belong to.
   struct MemoContext {
     MaterialCmd material{};

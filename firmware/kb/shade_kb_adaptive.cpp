@@ -109,7 +109,8 @@ bool before(const KbAdaptiveMethod::VertexKey& a, const KbAdaptiveMethod::Vertex
 // position) and the position along the edge; the memo is emptied when the material, a light or
 // the eye mode changes.
 void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) {
-  // Barycentric weights (vertex 0, 1, 2) = (lc, la, lb); the edge holds the two non-zero ones.
+  // Barycentric weights (vertex 0, 1, 2) = (lc, la, lb); the edge holds the two non-zero ones,
+  // and they add up to kLatticeRes.
   int a = 0, b = 1;
   std::int64_t ka = lc, kb = la;
   if (la == 0) {
@@ -117,20 +118,10 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) 
   } else if (lc == 0) {
     a = 1, b = 2, ka = la, kb = lb;
   }
-  VertexKey key_a = key_of(tri_->v[a]), key_b = key_of(tri_->v[b]);
-  if (ka == 0) {  // a vertex: both ends the same
-    key_a = key_b;
-    a = b;
-    ka = kb;
-  } else if (kb == 0) {
-    key_b = key_a;
-    b = a;
-    kb = ka;
-  }
-  if (before(key_b, key_a)) {  // canonical order, so that either triangle finds it
-    const VertexKey k = key_a;
-    key_a = key_b;
-    key_b = k;
+  if (ka == 0 || kb == 0) {  // a vertex: both ends the same
+    a = b = ka == 0 ? b : a;
+    ka = kb = kLatticeRes / 2;
+  } else if (edge_.swapped[a + b - 1]) {  // canonical order, so that either triangle finds it
     const int v = a;
     a = b;
     b = v;
@@ -138,12 +129,10 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) 
     ka = kb;
     kb = w;
   }
-  const auto share = static_cast<std::int32_t>(ka * kMemoScale / (ka + kb));  // of kMemoScale
-  std::uint32_t h = static_cast<std::uint32_t>(key_a.sx) * 73856093u ^
-                    static_cast<std::uint32_t>(key_a.sy) * 19349663u ^
-                    static_cast<std::uint32_t>(key_b.sx) * 83492791u ^
-                    static_cast<std::uint32_t>(key_b.sy) * 2654435761u ^
-                    static_cast<std::uint32_t>(share) * 40503u;
+  const VertexKey& key_a = edge_.key[a];
+  const VertexKey& key_b = edge_.key[b];
+  const auto share = static_cast<std::int32_t>(ka * (kMemoScale / kLatticeRes));  // of kMemoScale
+  const std::uint32_t h = edge_.hash_first[a] ^ edge_.hash_second[b] ^ static_cast<std::uint32_t>(share) * 40503u;
   EdgeMemo& m = edge_memo_[(h ^ (h >> 15)) % kEdgeMemo];
   if (m.valid && m.share == share && m.a == key_a && m.b == key_b) {
     for (int c = 0; c < 3; ++c) out[c] = m.value[c];
@@ -156,6 +145,20 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) 
   m.share = share;
   for (int c = 0; c < 3; ++c) m.value[c] = out[c];
   m.valid = true;
+}
+
+// The memo's keys of the triangle's vertices, the canonical order of each edge (edge a + b − 1
+// joins a < b) and the vertices' parts of the memo's hash: once per triangle, not per sample.
+void KbAdaptiveMethod::prepare_edge_keys(const Triangle& tri) {
+  for (int i = 0; i < 3; ++i) {
+    edge_.key[i] = key_of(tri.v[i]);
+    const auto x = static_cast<std::uint32_t>(tri.v[i].sx), y = static_cast<std::uint32_t>(tri.v[i].sy);
+    edge_.hash_first[i] = x * 73856093u ^ y * 19349663u;
+    edge_.hash_second[i] = x * 83492791u ^ y * 2654435761u;
+  }
+  edge_.swapped[0] = before(edge_.key[1], edge_.key[0]);
+  edge_.swapped[1] = before(edge_.key[2], edge_.key[0]);
+  edge_.swapped[2] = before(edge_.key[2], edge_.key[1]);
 }
 
 // The six samples of a cell, channel ch (already evaluated: the cell was checked).
@@ -381,12 +384,16 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   du_ = fx::div<local_t>(I62::from_raw(de1_), I62::from_raw(tri.area2)).raw();
   dv_ = fx::div<local_t>(I62::from_raw(de2_), I62::from_raw(tri.area2)).raw();
 
-  if (mode_ == AdaptiveMode::kExactOnly) {
+  // A triangle of fewer than 32 pixels is cheaper evaluated exactly at every pixel than sampled
+  // and checked, whatever the check would say (about nine of its fifteen samples are its own on
+  // a mesh; docs/KUIJK-BLAKE.md has the measurements).
+  if (mode_ == AdaptiveMode::kExactOnly || tri.area2 < kDirectExactArea2) {
     path_ = Path::kExact;
     ++counters_->adaptive_exact;
     return true;
   }
   find_terminators(tri);
+  if (terminators_ == 0) prepare_edge_keys(tri);  // (the memo holds colours only)
   const int guard = peak_level(kWhole);
   const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
   if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
