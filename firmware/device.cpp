@@ -57,35 +57,69 @@ class PixelWriter final : public SpanTarget {
     std::uint32_t* depth = dev_.region<std::uint32_t>(st.off_depth) + row;
     std::uint8_t* counts =
         st.viewport.write_count ? dev_.region<std::uint8_t>(st.off_counts) + row : nullptr;
-    const bool rgb565 = st.viewport.format == PixelFormat::kRgb565;
     std::uint8_t* colour_row =
         dev_.region<std::uint8_t>(st.off_colour) + row * bytes_per_pixel(st.viewport.format);
     const Lambdas lam = lambdas_at(tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
-    constexpr int f = ScreenPlane::kStepFrac;
-    std::int64_t z = zplane_.at(lam) << f;
-    const std::int64_t dz = zplane_.step_x();
-    for (std::int32_t x = s.x0; x < s.x1; ++x, z += dz) {
-      const auto i = static_cast<std::size_t>(x);
-      const std::uint32_t d = depth_word(z >> f);
-      if (st.depth_test && !(d < depth[i])) continue;
-      depth[i] = d;
-      const Rgb8 px = colours[x - s.x0];
-      if (rgb565) {
-        // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
-        const auto v = static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
-        colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
-        colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
-      } else {
-        colour_row[3 * i] = px.r;
-        colour_row[3 * i + 1] = px.g;
-        colour_row[3 * i + 2] = px.b;
-      }
-      if (counts != nullptr && counts[i] != 0xff) ++counts[i];
-      ++c.pixels_written;
+    const Run run{colours, depth, colour_row, counts, zplane_.at(lam) << ScreenPlane::kStepFrac,
+                  zplane_.step_x(), s.x0, s.x1};
+    // The format, the depth test and the write counts are fixed for the draw: one loop for each
+    // combination, chosen here, so that the pixel loop branches on none of them.
+    const bool rgb565 = st.viewport.format == PixelFormat::kRgb565;
+    const int variant = (rgb565 ? 4 : 0) | (st.depth_test ? 2 : 0) | (counts != nullptr ? 1 : 0);
+    std::uint64_t written = 0;
+    switch (variant) {
+      case 0: written = write<false, false, false>(run); break;
+      case 1: written = write<false, false, true>(run); break;
+      case 2: written = write<false, true, false>(run); break;
+      case 3: written = write<false, true, true>(run); break;
+      case 4: written = write<true, false, false>(run); break;
+      case 5: written = write<true, false, true>(run); break;
+      case 6: written = write<true, true, false>(run); break;
+      default: written = write<true, true, true>(run); break;
     }
+    c.pixels_written += written;
   }
 
  private:
+  // One span's pixels: colours from the method, the depth plane stepped per pixel.
+  struct Run {
+    const Rgb8* colours;
+    std::uint32_t* depth;
+    std::uint8_t* colour_row;
+    std::uint8_t* counts;
+    std::int64_t z, dz;  // depth plane, ScreenPlane::kStepFrac more fraction bits
+    std::int32_t x0, x1;
+  };
+  // Depth-tests and writes the span; returns the pixels written.
+  template <bool kRgb565, bool kDepthTest, bool kCounts>
+  static std::uint64_t write(const Run& r) {
+    constexpr int f = ScreenPlane::kStepFrac;
+    std::uint64_t written = 0;
+    std::int64_t z = r.z;
+    for (std::int32_t x = r.x0; x < r.x1; ++x, z += r.dz) {
+      const auto i = static_cast<std::size_t>(x);
+      const std::uint32_t d = depth_word(z >> f);
+      if (kDepthTest && !(d < r.depth[i])) continue;
+      r.depth[i] = d;
+      const Rgb8 px = r.colours[x - r.x0];
+      if constexpr (kRgb565) {
+        // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
+        const auto v = static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
+        r.colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
+        r.colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
+      } else {
+        r.colour_row[3 * i] = px.r;
+        r.colour_row[3 * i + 1] = px.g;
+        r.colour_row[3 * i + 2] = px.b;
+      }
+      if constexpr (kCounts) {
+        if (r.counts[i] != 0xff) ++r.counts[i];
+      }
+      ++written;
+    }
+    return written;
+  }
+
   Device& dev_;
   const Triangle& tri_;
   ShadingMethod& method_;
