@@ -38,12 +38,9 @@ inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
 // their diffuse is sampled unclamped and max(0, ·) applied per pixel where a cell crosses it.
 inline constexpr int kMaxTerminators = 8;
-// Smaller triangles leave terminators in the samples: a crossed one fails its check and has
-// fewer pixels than refining would take samples, so it goes per pixel anyway.
-inline constexpr std::int64_t kTerminatorMinPixels = 256;
-// Triangles below 32 pixels (area2 counts 512 per pixel) go straight to per-pixel evaluation:
+// Triangles below 64 pixels (area2 counts 512 per pixel) go straight to per-pixel evaluation:
 // their samples and check would cost more (docs/KUIJK-BLAKE.md, "kb-adaptive").
-inline constexpr std::int64_t kDirectExactArea2 = std::int64_t{32} * 512;
+inline constexpr std::int64_t kDirectExactArea2 = std::int64_t{64} * 512;
 inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.14 levels), then N·L (Q.24)
 
 // kAdaptive: the method. kNoSkip: the same choices, but constant triangles are stepped and every
@@ -120,7 +117,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
     lb = c.up ? (4 * c.j + qv) * st : (4 * (c.j + 1) - qv) * st;
   }
   const std::int32_t* lattice_at(int la, int lb);
-  void edge_sample(int la, int lb, int lc, std::int32_t out[3]);
+  void edge_sample(int la, int lb, int lc, std::int32_t out[]);
   void prepare_edge_keys(const Triangle& tri);
   void find_terminators(const Triangle& tri);
   void cell_points(const Cell& c, const std::int32_t* v[15]);
@@ -172,7 +169,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   struct EdgeMemo {
     VertexKey a, b;
     std::int32_t share = 0;
-    std::int32_t value[3] = {0, 0, 0};
+    std::uint32_t terminators = 0;  // the terminator mask the values were taken with
+    std::int32_t value[kChannels] = {};
     bool valid = false;
   };
   EdgeMemo edge_memo_[kEdgeMemo];

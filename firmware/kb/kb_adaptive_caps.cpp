@@ -49,9 +49,7 @@ void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
   std::uint32_t mask = 0;
   std::int64_t total = 0;
   const MaterialCmd& m = ctx_->material;
-  // A small triangle that a terminator crosses is cheaper per pixel (its check fails, and it has
-  // fewer pixels than refining would take samples): only larger ones take the terminators apart.
-  if (m.kd.raw() != 0 && tri.area2 / (2 * 256) > kTerminatorMinPixels) {
+  if (m.kd.raw() != 0) {
     const Vec3u normals[3] = {tri.v[0].normal, tri.v[1].normal, tri.v[2].normal};
     const Cap n_cap = cap_of(normals);
     const std::int64_t r_n = angle_of(n_cap.cos_radius);

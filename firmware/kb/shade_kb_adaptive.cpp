@@ -73,7 +73,7 @@ const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
   const int i = index(la, lb);
   if (lattice_.stamp[i] != lattice_.generation) {
     const int lc = kLatticeRes - la - lb;
-    if ((la == 0 || lb == 0 || lc == 0) && terminators_ == 0)  // (the memo holds colours only)
+    if (la == 0 || lb == 0 || lc == 0)
       edge_sample(la, lb, lc, lattice_.value[i]);
     else {
       point_.shade(point_.point(lc, la, lb), lattice_.value[i], terminator_mask_);
@@ -106,9 +106,9 @@ bool before(const KbAdaptiveMethod::VertexKey& a, const KbAdaptiveMethod::Vertex
 // A sample on the triangle's boundary: a function of the edge's two vertices alone
 // (PointShader::edge_point), so that neighbouring triangles share it through the memo, keyed on
 // everything the value depends on: both vertices (screen position, depth, w, normal, eye-space
-// position) and the position along the edge; the memo is emptied when the material, a light or
-// the eye mode changes.
-void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) {
+// position), the position along the edge and the set of terminator lights; the memo is emptied
+// when the material, a light or the eye mode changes. out: the lattice's kChannels.
+void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[]) {
   // Barycentric weights (vertex 0, 1, 2) = (lc, la, lb); the edge holds the two non-zero ones,
   // and they add up to kLatticeRes.
   int a = 0, b = 1;
@@ -134,16 +134,20 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[3]) 
   const auto share = static_cast<std::int32_t>(ka * (kMemoScale / kLatticeRes));  // of kMemoScale
   const std::uint32_t h = edge_.hash_first[a] ^ edge_.hash_second[b] ^ static_cast<std::uint32_t>(share) * 40503u;
   EdgeMemo& m = edge_memo_[(h ^ (h >> 15)) % kEdgeMemo];
-  if (m.valid && m.share == share && m.a == key_a && m.b == key_b) {
-    for (int c = 0; c < 3; ++c) out[c] = m.value[c];
+  // The colours, then the N·L of the terminators (whose diffuse the colours leave unclamped):
+  // the values depend on which lights are terminators, so the memo's key holds that set too.
+  const int channels = 3 + terminators_;
+  if (m.valid && m.share == share && m.terminators == terminator_mask_ && m.a == key_a && m.b == key_b) {
+    for (int c = 0; c < channels; ++c) out[c] = m.value[c];
     return;
   }
-  point_.shade(point_.edge_point(a, b, ka, kb), out);
+  point_.shade(point_.edge_point(a, b, ka, kb), out, terminator_mask_);
   ++counters_->lattice_samples;
   m.a = key_a;
   m.b = key_b;
   m.share = share;
-  for (int c = 0; c < 3; ++c) m.value[c] = out[c];
+  m.terminators = terminator_mask_;
+  for (int c = 0; c < channels; ++c) m.value[c] = out[c];
   m.valid = true;
 }
 
@@ -384,7 +388,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   du_ = fx::div<local_t>(I62::from_raw(de1_), I62::from_raw(tri.area2)).raw();
   dv_ = fx::div<local_t>(I62::from_raw(de2_), I62::from_raw(tri.area2)).raw();
 
-  // A triangle of fewer than 32 pixels is cheaper evaluated exactly at every pixel than sampled
+  // A triangle of fewer than 64 pixels is cheaper evaluated exactly at every pixel than sampled
   // and checked, whatever the check would say (about nine of its fifteen samples are its own on
   // a mesh; docs/KUIJK-BLAKE.md has the measurements).
   if (mode_ == AdaptiveMode::kExactOnly || tri.area2 < kDirectExactArea2) {
@@ -393,7 +397,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     return true;
   }
   find_terminators(tri);
-  if (terminators_ == 0) prepare_edge_keys(tri);  // (the memo holds colours only)
+  prepare_edge_keys(tri);
   const int guard = peak_level(kWhole);
   const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
   if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
