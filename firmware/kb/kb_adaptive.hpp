@@ -133,6 +133,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
   void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n, Rgb8* out) const;
+  void shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const;
   void fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u, std::int64_t v,
                       std::int32_t n, Rgb8* out) const;
 

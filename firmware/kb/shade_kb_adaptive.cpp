@@ -236,8 +236,10 @@ void children_of(const KbAdaptiveMethod::Cell& c, KbAdaptiveMethod::Cell out[4])
 }
 }  // namespace
 
-// Records leaf number `leaf` for every deepest-level cell inside `c`.
+// Records leaf number `leaf` for every deepest-level cell inside `c`. The whole triangle as its
+// only leaf needs no map (shade_span reads leaves_[0]).
 void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
+  if (c.level == 0) return;
   if (c.level == kMaxLevel) {
     (c.up ? leaf_up_ : leaf_down_)[c.j][c.i] = leaf;
     return;
@@ -584,9 +586,21 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
     fill_quadratic(whole_, whole_in_range_, u, v, n, out);
     return;
   }
-  // Subdivided: each piece of the span lies in one leaf cell (found through the deepest level's
-  // map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
-  std::int64_t e1 = lam.l[1], e2 = lam.l[2];
+  const std::int64_t e1 = lam.l[1], e2 = lam.l[2];
+  if (leaves_[0].cell.level == 0) {  // the whole triangle is one leaf (terminators, or refine's root)
+    if (leaves_[0].exact)
+      shade_exact(s.y, s.x0, n, out);
+    else
+      shade_cell(leaves_[0], e1, e2, n, out);
+    return;
+  }
+  shade_pieces(s, e1, e2, out);
+}
+
+// Subdivided: each piece of the span lies in one leaf cell (found through the deepest level's
+// map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
+void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const {
+  const std::int32_t n = s.x1 - s.x0;
   for (std::int32_t x = 0; x < n;) {
     const Cell finest = cell_at(kMaxLevel, e1, e2);
     const Leaf& leaf = leaves_[(finest.up ? leaf_up_ : leaf_down_)[finest.j][finest.i]];
