@@ -93,11 +93,12 @@ struct QuadStep {
 //   e_u = 2 c_uu du + c_uv dv,  e_v = 2 c_vv dv + c_uv du,
 // and the second difference d2 = 2 (c_uu du² + c_vv dv² + c_uv du dv) is constant. e0 and d2
 // are formed once per cell with the steps' full precision (Q.14 × Q.60 in 128 bits).
-// Bounds: |c| < 2^29 (|g| < 2^25); |u|, |v| <= 1 + 2^-20 at a pixel of the piece, and |du|, |dv|
-// < 1 + 2^-20 when the piece has two pixels or more (both lie in the cell); steps are clamped
-// to ±2 (a one-pixel piece never uses them), so every product below stays under 2^62.
+// Bounds: |c| < 2^29 (|g| < 2^25); |u|, |v| <= 1 + 2^-20 at every pixel of a piece, and |du|,
+// |dv| < 1 + 2^-20 when the piece has two pixels or more (both lie in the cell); steps are
+// clamped to ±2 (a one-pixel piece never uses them), so every product below stays under 2^62.
 struct SteppedQuadratic {
   LocalQuadratic q;
+  std::int64_t du = 0, dv = 0;                  // Q.30
   std::int64_t e0 = 0, eu = 0, ev = 0, d2 = 0;  // e0, d2: Q.40; eu, ev: Q.44 (× Q.30 -> Q.74)
 };
 
@@ -108,6 +109,8 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
   dv = dv > kTwo ? kTwo : (dv < -kTwo ? -kTwo : dv);
   SteppedQuadratic s;
   s.q = q;
+  s.du = du;
+  s.dv = dv;
   const std::int64_t du2 = du * du, dv2 = dv * dv, dudv = du * dv;  // Q.60, <= 2^62
   constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;   // Q.14 × Q.60 -> Q.40
   constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;  // Q.14 × Q.30 -> Q.40
@@ -120,21 +123,52 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
   return s;
 }
 
-// The state at local (u, v) (Q.30). With steps = false (a one-pixel piece) only the value.
-inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, bool steps) {
-  using cosn::fd_detail::mul_shr;
+// The monomials of a point (u, v) (Q.30), shared by every channel's quadratic there.
+struct Monomials {
+  std::int64_t u = 0, v = 0, uu = 0, vv = 0, uv = 0;  // Q.30
+};
+inline Monomials monomials(std::int64_t u, std::int64_t v) {
+  const auto sq30 = [](std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); };
+  return Monomials{u, v, sq30(u, u), sq30(v, v), sq30(u, v)};
+}
+
+// The quadratic's value at a point, levels in Q.40.
+inline std::int64_t value_at(const LocalQuadratic& q, const Monomials& m) {
   constexpr int kToState = kQuadStateFrac - kSampleFrac;    // 26
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
-  const LocalQuadratic& q = s.q;
-  const auto sq30 = [](std::int64_t a, std::int64_t b) {
-    return fx::detail::round_shift_right(a * b, 30);
-  };
-  QuadStep st;
-  st.v = q.c0 * (std::int64_t{1} << kToState) +
-         fx::detail::round_shift_right(q.cu * u + q.cv * v + q.cuu * sq30(u, u) +
-                                           q.cvv * sq30(v, v) + q.cuv * sq30(u, v),
+  return q.c0 * (std::int64_t{1} << kToState) +
+         fx::detail::round_shift_right(q.cu * m.u + q.cv * m.v + q.cuu * m.uu + q.cvv * m.vv + q.cuv * m.uv,
                                        kProd);
-  if (!steps) return st;
+}
+
+// Pieces of up to this many pixels take their first difference as the difference of the values
+// at their first two pixels (seed_short): the Q.30 rounding of the monomials makes that d1 up to
+// 3·2^-15 of a level off for the largest coefficients (2^15 levels), a drift of 0.006 level
+// over 64 pixels; longer pieces take it from e0, e_u, e_v (seed_quadratic), as exact as the steps.
+inline constexpr std::int32_t kShortPiece = 64;
+
+// The state of a short piece at the point with monomials `at`; `second`, the monomials at its
+// second pixel (u + du, v + dv), or nullptr for a one-pixel piece (the value alone).
+inline QuadStep seed_short(const SteppedQuadratic& s, const Monomials& at, const Monomials* second) {
+  QuadStep st;
+  st.v = value_at(s.q, at);
+  if (second == nullptr) return st;
+  st.d1 = value_at(s.q, *second) - st.v;
+  st.d2 = s.d2;
+  return st;
+}
+
+// The state at local (u, v) (Q.30) of a piece of n pixels.
+inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, std::int32_t n) {
+  using cosn::fd_detail::mul_shr;
+  constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
+  const Monomials at = monomials(u, v);
+  if (n <= kShortPiece) {
+    const Monomials second = monomials(u + s.du, v + s.dv);
+    return seed_short(s, at, n > 1 ? &second : nullptr);
+  }
+  QuadStep st;
+  st.v = value_at(s.q, at);
   st.d1 = s.e0 + mul_shr(s.eu, u, kProd + 30) + mul_shr(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
   st.d2 = s.d2;
   return st;

@@ -437,9 +437,20 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 
 void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u,
                                       std::int64_t v, std::int32_t n, Rgb8* out) const {
-  const QuadStep r = seed_quadratic(q[0], u, v, n > 1);
-  const QuadStep g = seed_quadratic(q[1], u, v, n > 1);
-  const QuadStep b = seed_quadratic(q[2], u, v, n > 1);
+  QuadStep r, g, b;
+  if (n <= kShortPiece) {
+    // The channels share their steps (one cell): the monomials at the first two pixels, once.
+    const Monomials at = monomials(u, v);
+    const Monomials second = monomials(u + q[0].du, v + q[0].dv);
+    const Monomials* next = n > 1 ? &second : nullptr;
+    r = seed_short(q[0], at, next);
+    g = seed_short(q[1], at, next);
+    b = seed_short(q[2], at, next);
+  } else {
+    r = seed_quadratic(q[0], u, v, n);
+    g = seed_quadratic(q[1], u, v, n);
+    b = seed_quadratic(q[2], u, v, n);
+  }
   std::int64_t rv = r.v, rd = r.d1, gv = g.v, gd = g.d1, bv = b.v, bd = b.d1;
   if (in_range) {
     // Every value of the cell's quadratics is inside [0, 255.5): rounding alone.
@@ -523,9 +534,17 @@ void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_
 void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v,
                                       std::int32_t n, Rgb8* out) const {
   QuadStep st[3 + kMaxTerminators];
-  for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n > 1);
   const Crossing* crossing = crossings_ + leaf.first;
-  for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n > 1);
+  if (n <= kShortPiece) {
+    const Monomials at = monomials(u, v);
+    const Monomials second = monomials(u + leaf.q[0].du, v + leaf.q[0].dv);
+    const Monomials* next = n > 1 ? &second : nullptr;
+    for (int c = 0; c < 3; ++c) st[c] = seed_short(leaf.q[c], at, next);
+    for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_short(crossing[k].nl, at, next);
+  } else {
+    for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n);
+    for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n);
+  }
   const int count = 3 + leaf.crossing;
   for (std::int32_t x = 0; x < n; ++x) {
     std::int64_t colour[3] = {st[0].v, st[1].v, st[2].v};
