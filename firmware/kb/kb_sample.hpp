@@ -31,6 +31,39 @@ inline std::int64_t dot_unit(const Vec3u& a, const Vec3u& b) {
 // value where no saturation can occur (|a·b| < 2 here: material weights and cosines).
 inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); }
 
+// A vector cut to at most 30 bits per component (rounding half up: only its direction matters)
+// and the reciprocal root of its squared length; a zero vector keeps inv.r == 0.
+struct CutVector {
+  std::int64_t c[3] = {0, 0, 0};
+  fx::RsqrtFast inv;
+};
+inline CutVector cut_vector(const std::int64_t v[3]) {
+  const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
+  const int w = static_cast<int>(std::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2])));
+  const int cut = w > 30 ? w - 30 : 0;
+  const std::int64_t bias = cut > 0 ? std::int64_t{1} << (cut - 1) : 0;
+  CutVector r;
+  for (int j = 0; j < 3; ++j) r.c[j] = (v[j] + bias) >> cut;
+  const auto s = static_cast<std::uint64_t>(r.c[0] * r.c[0] + r.c[1] * r.c[1] + r.c[2] * r.c[2]);
+  if (s != 0) r.inv = fx::rsqrt_fast(s);  // s <= 3·2^60
+  return r;
+}
+// x / |v| in Q1.30 for x in v's units, |x| <= 3·2^30: (x·r) >> shift, rounded (x·r < 2^63).
+inline std::int64_t over_length(std::int64_t x, const CutVector& v) {
+  if (v.inv.r == 0) return 0;
+  return (x * v.inv.r + (std::int64_t{1} << (v.inv.shift - 1))) >> v.inv.shift;
+}
+// The cosine between a and b, a·b / (|a||b|), in Q1.30 (0 if either is zero).
+inline std::int64_t cosine(const CutVector& a, const CutVector& b) {
+  const std::int64_t dot = a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];  // |.| <= 3·2^60
+  return over_length(over_length(fx::detail::round_shift_right(dot, 30), a), b);
+}
+// The cosine between a and the unit vector u (Q1.30).
+inline std::int64_t cosine(const CutVector& a, const Vec3u& u) {
+  const std::int64_t dot = a.c[0] * u.x.raw() + a.c[1] * u.y.raw() + a.c[2] * u.z.raw();
+  return over_length(fx::detail::round_shift_right(dot, 30), a);
+}
+
 class PointShader {
  public:
   static constexpr int kFrac = 14;  // output: levels, Q.14
@@ -49,6 +82,7 @@ class PointShader {
       diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
     }
     lights_ = 0;
+    bool point_light = false;
     for (std::size_t i = 0; i < kMaxLights; ++i) {
       const LightState& l = ctx.lights[i];
       if (l.type == LightType::kOff) continue;
@@ -60,8 +94,85 @@ class PointShader {
         h_[lights_] = fx::normalize_fast(std::int64_t{l.direction.x.raw()},
                                          std::int64_t{l.direction.y.raw()},
                                          std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
+      point_light = point_light || l.type == LightType::kPoint;
       light_[lights_++] = &l;
     }
+    // The stepped per-pixel evaluation (SpanStepper): directional lights only, and a triangle
+    // small enough that its weights keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled
+    // by 2^-bits(area2) so that Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0,
+    // Σ k_i = area2).
+    steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30);
+    if (steppable_) {
+      const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
+      for (int i = 0; i < 3; ++i) {
+        const ShadeVertex& v = tri.v[i];
+        const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};
+        const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
+        for (int j = 0; j < 3; ++j) {
+          weighted_normal_[i][j] = fx::detail::round_shift_right(r_[i] * n[j], scale);
+          weighted_eye_[i][j] = fx::detail::round_shift_right(r_[i] * e[j], scale);
+        }
+      }
+    }
+  }
+
+  // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
+  // the triangle's scale) are linear in screen x, so they are stepped by additions, exactly, and
+  // N·L, N·E, L·E and N·H are cosines between them and the unit light directions (no unit vector
+  // is formed: one reciprocal root per vector, and one for |L + E|). Directional lights only
+  // (steppable()): a point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
+  struct SpanStepper {
+    std::int64_t n[3] = {0, 0, 0}, dn[3] = {0, 0, 0}, p[3] = {0, 0, 0}, dp[3] = {0, 0, 0};
+    void step() {
+      for (int j = 0; j < 3; ++j) {
+        n[j] += dn[j];
+        p[j] += dp[j];
+      }
+    }
+  };
+  bool steppable() const { return steppable_; }
+  // From the edge functions k at the span's first pixel centre and their steps dk per pixel.
+  SpanStepper span_stepper(const std::int64_t k[3], const std::int64_t dk[3]) const {
+    SpanStepper st;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        st.n[j] += k[i] * weighted_normal_[i][j];
+        st.p[j] += k[i] * weighted_eye_[i][j];
+        st.dn[j] += dk[i] * weighted_normal_[i][j];
+        st.dp[j] += dk[i] * weighted_eye_[i][j];
+      }
+    return st;
+  }
+  // The level (Q.14, before the output clamp) of each channel at the stepper's pixel.
+  void shade_stepped(const SpanStepper& st, std::int32_t out[3]) const {
+    std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
+    const MaterialCmd& m = ctx_->material;
+    const bool finite = ctx_->eye == EyeMode::kFinite;
+    const CutVector n = cut_vector(st.n);
+    CutVector e;  // toward the point from the eye (−E), finite eye only
+    if (finite) e = cut_vector(st.p);
+    const std::int64_t normal_eye = finite ? -cosine(n, e) : over_length(n.c[2], n);  // N·E
+    for (int li = 0; li < lights_; ++li) {
+      const LightState& l = *light_[li];
+      const std::int64_t normal_light = cosine(n, l.direction);
+      const std::int64_t ndl = normal_light > 0 ? normal_light : 0;
+      std::int64_t ndh = 0;
+      if (fixed_h_[li]) {
+        const std::int64_t d = cosine(n, h_[li]);
+        ndh = d > 0 ? d : 0;
+      } else {
+        const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
+        ndh = halfway_cosine(normal_light + normal_eye, light_eye);
+      }
+      if (skipping_ && ndl == 0 && ndh == 0) continue;  // adds exactly 0
+      const std::int64_t spec =
+          mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
+      for (int c = 0; c < 3; ++c) {
+        const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
+        acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+      }
+    }
+    for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
   }
 
   // The geometry at a point: normal, eye direction, and the eye-space position as s·P (p, in
@@ -161,8 +272,11 @@ class PointShader {
       return d > 0 ? d : 0;
     }
     const std::int64_t light_eye = ctx_->eye == EyeMode::kFinite ? dot_unit(lv, pt.eye) : lv.z.raw();
+    return halfway_cosine(normal_light + pt.normal_eye, light_eye);
+  }
+  // N·H from x = N·(L + E) and L·E (Q1.30): x / √(2 + 2 L·E), clamped to [0, 1].
+  static std::int64_t halfway_cosine(std::int64_t x, std::int64_t light_eye) {
     const std::int64_t length2 = (std::int64_t{2} << 30) + 2 * light_eye;  // |L + E|², Q.30
-    const std::int64_t x = normal_light + pt.normal_eye;                   // N·(L + E), Q.30
     if (length2 <= 0 || x <= 0) return 0;
     // x / √(length2·2^-30) in Q1.30: (x·r) >> shift is x/√length2 in Q1.30, times 2^15.
     const fx::RsqrtFast inv = fx::rsqrt_fast(static_cast<std::uint64_t>(length2));
@@ -225,6 +339,9 @@ class PointShader {
   const Triangle* tri_ = nullptr;
   const ShadeContext* ctx_ = nullptr;
   bool skipping_ = true;
+  bool steppable_ = false;
+  std::int64_t weighted_normal_[3][3] = {};  // r_i·N_i, scaled by 2^-bits(area2)
+  std::int64_t weighted_eye_[3][3] = {};     // r_i·P_i, likewise
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30
