@@ -237,16 +237,23 @@ void children_of(const KbAdaptiveMethod::Cell& c, KbAdaptiveMethod::Cell out[4])
 }  // namespace
 
 // Records leaf number `leaf` for every deepest-level cell inside `c`. The whole triangle as its
-// only leaf needs no map (shade_span reads leaves_[0]).
+// only leaf needs no map (shade_span reads leaves_[0]). A cell of level L spans m = 2^(D − L)
+// deepest steps: an "up" cell (i, j) holds the deepest up cells (a, b) with a >= m·i, b >= m·j,
+// (a − m·i) + (b − m·j) <= m − 1 and the down cells with the same offsets summing to <= m − 2;
+// a "down" cell the same counted back from its corner (m(i + 1) − 1, m(j + 1) − 1), with the
+// roles of up and down exchanged.
 void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
   if (c.level == 0) return;
-  if (c.level == kMaxLevel) {
-    (c.up ? leaf_up_ : leaf_down_)[c.j][c.i] = leaf;
-    return;
-  }
-  Cell kids[4];
-  children_of(c, kids);
-  for (const Cell& k : kids) mark(k, leaf);
+  const int m = 1 << (kMaxLevel - c.level);
+  auto& same = c.up ? leaf_up_ : leaf_down_;
+  auto& other = c.up ? leaf_down_ : leaf_up_;
+  for (int db = 0; db < m; ++db)
+    for (int da = 0; da + db <= m - 1; ++da) {
+      const int a = c.up ? m * c.i + da : m * (c.i + 1) - 1 - da;
+      const int b = c.up ? m * c.j + db : m * (c.j + 1) - 1 - db;
+      same[b][a] = leaf;
+      if (da + db <= m - 2) other[b][a] = leaf;
+    }
 }
 
 // Makes c a leaf: its quadratics, or per-pixel evaluation. A terminator whose N·L keeps one
