@@ -122,6 +122,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void find_terminators(const Triangle& tri);
   void cell_points(const Cell& c, const std::int32_t* v[15]);
   void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n, Rgb8* out) const;
+  static void shade_one_crossing(const QuadStep st[4], const Crossing& crossing, std::int32_t n, Rgb8* out);
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded);
