@@ -125,10 +125,10 @@ class KbAdaptiveMethod final : public ShadingMethod {
   static void shade_one_crossing(const QuadStep st[4], const Crossing& crossing, std::int32_t n, Rgb8* out);
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
-  void refine(const Cell& c, bool guarded);
+  void refine(const Cell& c, bool guarded, std::uint32_t peaks);
   void mark(const Cell& c, std::uint16_t leaf);
   void choose_cheap_path(std::int64_t err0);
-  int peak_level(const Cell& c);
+  int peak_level(const Cell& c, std::uint32_t& peaks);
   void add_leaf(const Cell& c, bool quadratic);
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;

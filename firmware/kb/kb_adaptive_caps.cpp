@@ -98,9 +98,14 @@ void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
 // are less than r_N + r_H apart; then the sample spacing, about (r_N + r_H) / 2^k in angle, must
 // stay within ω = 0.6/√n, where cos^n has fallen to 0.83 of its peak, so that the check points
 // see the peak's curvature instead of it passing between samples (docs/KUIJK-BLAKE.md).
-int KbAdaptiveMethod::peak_level(const Cell& c) {
+// `peaks` (in and out): the lights to test — those whose peak may lie on a cell containing c —
+// narrowed to those whose peak may lie on c; the others cannot have one on c's descendants.
+int KbAdaptiveMethod::peak_level(const Cell& c, std::uint32_t& peaks) {
   const MaterialCmd& m = ctx_->material;
-  if (m.ks.raw() == 0 || point_.lights() == 0) return c.level;
+  if (m.ks.raw() == 0 || point_.lights() == 0 || peaks == 0) {
+    peaks = 0;
+    return c.level;
+  }
   if (omega_n_ != m.n) {
     // ω = 0.6 / √n in Q.30: 0.6·2^45 / (√n·2^15).
     omega_n_ = m.n;
@@ -119,7 +124,9 @@ int KbAdaptiveMethod::peak_level(const Cell& c) {
   const Cap n_cap = cap_of(normals);
   const std::int64_t r_n = angle_of(n_cap.cos_radius);
   int level = c.level;
+  std::uint32_t may_peak = 0;
   for (int li = 0; li < point_.lights(); ++li) {
+    if (((peaks >> li) & 1u) == 0) continue;
     const LightState& l = point_.light(li);
     if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
     Vec3u h[3];
@@ -129,10 +136,12 @@ int KbAdaptiveMethod::peak_level(const Cell& c) {
     const std::int64_t reach = (r_n + angle_of(h_cap.cos_radius)) * 17 / 16;
     const std::int64_t apart = angle_of(fx::dot<q1_30>(n_cap.centre, h_cap.centre).raw()) * 15 / 16;
     if (apart - reach >= omega_) continue;  // no peak on the cell
+    may_peak |= std::uint32_t{1} << li;
     int k = c.level;
     while (k <= kMaxLevel && (reach >> (k - c.level)) > omega_) ++k;
     if (k > level) level = k;
   }
+  peaks = may_peak;
   return level;
 }
 

@@ -326,9 +326,10 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
 
 // A cell is a leaf once its samples are dense enough for the highlights (peak_level, checked
 // while `guarded`: a cell that passes guarantees it for its descendants) and its check passes; at
-// the deepest level a cell that fails either is evaluated per pixel.
-void KbAdaptiveMethod::refine(const Cell& c, bool guarded) {
-  if (guarded && peak_level(c) == c.level) guarded = false;
+// the deepest level a cell that fails either is evaluated per pixel. `peaks`: the lights whose
+// highlight may lie on the parent — no other can lie on c, which lies inside it.
+void KbAdaptiveMethod::refine(const Cell& c, bool guarded, std::uint32_t peaks) {
+  if (guarded && peak_level(c, peaks) == c.level) guarded = false;
   if (!guarded || c.level == kMaxLevel) {
     const bool passes = !guarded && check_error(c) <= kEstimateBudget;
     if (passes || c.level == kMaxLevel) {
@@ -338,7 +339,7 @@ void KbAdaptiveMethod::refine(const Cell& c, bool guarded) {
   }
   Cell kids[4];
   children_of(c, kids);
-  for (const Cell& k : kids) refine(k, guarded);
+  for (const Cell& k : kids) refine(k, guarded, peaks);
 }
 
 // Level 0 passed its check (estimate err0): the simplest of constant, linear and quadratic
@@ -407,7 +408,8 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   }
   find_terminators(tri);
   prepare_edge_keys(tri);
-  const int guard = peak_level(kWhole);
+  std::uint32_t peaks = ~std::uint32_t{0};  // every light, until the guard narrows it
+  const int guard = peak_level(kWhole, peaks);
   const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
   if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
     choose_cheap_path(err0);
@@ -437,7 +439,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     level_ = kMaxLevel;
     leaf_count_ = 0;
     crossing_count_ = 0;
-    refine(kWhole, guard > 0);
+    refine(kWhole, guard > 0, peaks);
   }
   return true;
 }
