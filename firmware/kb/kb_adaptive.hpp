@@ -17,6 +17,7 @@
 // on the cell (peak_level).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -122,7 +123,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void find_terminators(const Triangle& tri);
   void cell_points(const Cell& c, const std::int32_t* v[15]);
   void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n, Rgb8* out) const;
-  static void shade_one_crossing(const QuadStep st[4], const Crossing& crossing, std::int32_t n, Rgb8* out);
+  template <std::size_t K>
+  static void shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n, Rgb8* out);
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded, std::uint32_t peaks);

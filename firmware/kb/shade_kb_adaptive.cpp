@@ -554,9 +554,12 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
     for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n);
     for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n);
   }
-  if (leaf.crossing == 1) {  // the common case, its states in registers
-    shade_one_crossing(st, crossing[0], n, out);
-    return;
+  // The common cases with their loops unrolled (the states in registers).
+  switch (leaf.crossing) {
+    case 1: shade_crossings<1>(st, crossing, n, out); return;
+    case 2: shade_crossings<2>(st, crossing, n, out); return;
+    case 3: shade_crossings<3>(st, crossing, n, out); return;
+    default: break;
   }
   const int count = 3 + leaf.crossing;
   for (std::int32_t x = 0; x < n; ++x) {
@@ -578,30 +581,38 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
   }
 }
 
-// shade_crossing's loop for one terminator, the same arithmetic: Q.24 × Q.14 << 2 -> Q.40.
-void KbAdaptiveMethod::shade_one_crossing(const QuadStep st[4], const Crossing& crossing, std::int32_t n,
-                                          Rgb8* out) {
+// shade_crossing's loop for K terminators, unrolled, the same arithmetic: Q.24 × Q.14 << 2 -> Q.40.
+template <std::size_t K>
+void KbAdaptiveMethod::shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n, Rgb8* out) {
   constexpr int kUp = kQuadStateFrac - 24 - kSampleFrac;
-  const std::int64_t wr = crossing.weight[0] * (std::int64_t{1} << kUp);
-  const std::int64_t wg = crossing.weight[1] * (std::int64_t{1} << kUp);
-  const std::int64_t wb = crossing.weight[2] * (std::int64_t{1} << kUp);
+  std::int64_t w[K][3];
+  std::int64_t nl[K], nld[K], nl2[K];
+  for (std::size_t k = 0; k < K; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) w[k][c] = crossing[k].weight[c] * (std::int64_t{1} << kUp);
+    nl[k] = st[3 + k].v;
+    nld[k] = st[3 + k].d1;
+    nl2[k] = st[3 + k].d2;
+  }
   std::int64_t r = st[0].v, rd = st[0].d1, g = st[1].v, gd = st[1].d1, b = st[2].v, bd = st[2].d1;
-  std::int64_t nl = st[3].v, nld = st[3].d1;
   for (std::int32_t x = 0; x < n; ++x) {
-    if (nl >= 0) {
-      out[x] = Rgb8{quad_level(r), quad_level(g), quad_level(b)};
-    } else {
-      const std::int64_t dark = (-nl) >> (kQuadStateFrac - kSampleFrac);  // Q.24
-      out[x] = Rgb8{quad_level(r + dark * wr), quad_level(g + dark * wg), quad_level(b + dark * wb)};
+    std::int64_t cr = r, cg = g, cb = b;
+    for (std::size_t k = 0; k < K; ++k) {
+      if (nl[k] < 0) {  // below zero the diffuse was left out of the colours
+        const std::int64_t dark = (-nl[k]) >> (kQuadStateFrac - kSampleFrac);  // Q.24
+        cr += dark * w[k][0];
+        cg += dark * w[k][1];
+        cb += dark * w[k][2];
+      }
+      nl[k] += nld[k];
+      nld[k] += nl2[k];
     }
+    out[x] = Rgb8{quad_level(cr), quad_level(cg), quad_level(cb)};
     r += rd;
     rd += st[0].d2;
     g += gd;
     gd += st[1].d2;
     b += bd;
     bd += st[2].d2;
-    nl += nld;
-    nld += st[3].d2;
   }
 }
 
