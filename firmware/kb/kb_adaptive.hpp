@@ -152,6 +152,12 @@ class KbAdaptiveMethod final : public ShadingMethod {
   bool whole_in_range_ = false;
   std::int64_t du_ = 0, dv_ = 0;    // per pixel: dλ1/dx, dλ2/dx in Q.30
   std::int64_t de1_ = 0, de2_ = 0;  // per pixel: dE1, dE2 (exact edge-function steps)
+  // ⌊2^60 / area2⌋: num / area2 in Q.30 as one product per span piece instead of a division,
+  // for |num| <= 2·area2 (|num·recip| < 2^62); relative error below area2·2^-60.
+  std::int64_t area_recip_ = 0;
+  std::int64_t local_of(std::int64_t num) const {
+    return (num * area_recip_ + (std::int64_t{1} << 29)) >> 30;
+  }
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.
   Leaf leaves_[kMaxLeaves];
   int leaf_count_ = 0;

@@ -397,6 +397,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
   du_ = fx::div<local_t>(I62::from_raw(de1_), I62::from_raw(tri.area2)).raw();
   dv_ = fx::div<local_t>(I62::from_raw(de2_), I62::from_raw(tri.area2)).raw();
+  area_recip_ = (std::int64_t{1} << 60) / tri.area2;
 
   // A triangle of fewer than 64 pixels is cheaper evaluated exactly at every pixel than sampled
   // and checked, whatever the check would say (about nine of its fifteen samples are its own on
@@ -530,8 +531,7 @@ void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_
   const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
   const std::int64_t nu = c.up ? s - c.i * area : (c.i + 1) * area - s;
   const std::int64_t nv = c.up ? t - c.j * area : (c.j + 1) * area - t;
-  const std::int64_t u = fx::div<local_t>(I62::from_raw(nu), I62::from_raw(area)).raw();
-  const std::int64_t v = fx::div<local_t>(I62::from_raw(nv), I62::from_raw(area)).raw();
+  const std::int64_t u = local_of(nu), v = local_of(nv);
   if (leaf.crossing > 0)
     shade_crossing(leaf, u, v, n, out);
   else
@@ -659,10 +659,8 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
     return;
   }
   const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
-  const std::int64_t area = tri_->area2;
   if (level_ == 0) {
-    const std::int64_t u = fx::div<local_t>(I62::from_raw(lam.l[1]), I62::from_raw(area)).raw();
-    const std::int64_t v = fx::div<local_t>(I62::from_raw(lam.l[2]), I62::from_raw(area)).raw();
+    const std::int64_t u = local_of(lam.l[1]), v = local_of(lam.l[2]);
     fill_quadratic(whole_, whole_in_range_, u, v, n, out);
     return;
   }
