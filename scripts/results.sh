@@ -20,7 +20,7 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
   cat <<EOF
 # Results: every method on every paper scene
 
-Error of every device method against the double-precision references (`host/reference.hpp`: Phong =
+Error of every device method against the double-precision references (\`host/reference.hpp\`: Phong =
 perspective-correct normals renormalised per pixel with true per-pixel L and V; angular = the
 same with slerped normals), and frame time as a ratio to Gouraud's measured in the same run
 (methods interleaved round-robin, median of $reps rounds; the frame time is the device's clear +
