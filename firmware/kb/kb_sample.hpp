@@ -146,7 +146,6 @@ class PointShader {
   // The level (Q.14, before the output clamp) of each channel at the stepper's pixel.
   void shade_stepped(const SpanStepper& st, std::int32_t out[3]) const {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
-    const MaterialCmd& m = ctx_->material;
     const bool finite = ctx_->eye == EyeMode::kFinite;
     const CutVector n = cut_vector(st.n);
     CutVector e;  // toward the point from the eye (−E), finite eye only
@@ -164,13 +163,7 @@ class PointShader {
         const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
         ndh = halfway_cosine(normal_light + normal_eye, light_eye);
       }
-      if (skipping_ && ndl == 0 && ndh == 0) continue;  // adds exactly 0
-      const std::int64_t spec =
-          mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
-      for (int c = 0; c < 3; ++c) {
-        const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
-        acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
-      }
+      add_light(l, ndl, ndh, acc);
     }
     for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
   }
@@ -292,7 +285,6 @@ class PointShader {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
     int k = 3;
     if (pt.inside) {
-      const MaterialCmd& m = ctx_->material;
       for (int li = 0; li < lights_; ++li) {
         const LightState& l = *light_[li];
         const Vec3u lv = light_direction(pt, li);
@@ -301,13 +293,7 @@ class PointShader {
         if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l, 6));
         const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
         const std::int64_t ndh = normal_halfway(pt, li, lv, dot_l);
-        if (skipping_ && ndl == 0 && ndh == 0) continue;  // adds exactly 0
-        const std::int64_t spec =
-            mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
-        for (int c = 0; c < 3; ++c) {
-          const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
-          acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
-        }
+        add_light(l, ndl, ndh, acc);
       }
     }
     for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
@@ -320,6 +306,19 @@ class PointShader {
   }
 
  private:
+  // One light's Blinn-Phong term in each channel's Q.30 sum, from max(0, N·L) (or the unclamped
+  // N·L of a terminator) and max(0, N·H).
+  void add_light(const LightState& l, std::int64_t ndl, std::int64_t ndh, std::int64_t acc[3]) const {
+    if (skipping_ && ndl == 0 && ndh == 0) return;  // adds exactly 0
+    const MaterialCmd& m = ctx_->material;
+    const std::int64_t spec =
+        mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
+      acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+    }
+  }
+
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
   static int shift_for(std::int64_t bits) {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
