@@ -86,6 +86,9 @@ class PointShader {
     for (std::size_t i = 0; i < kMaxLights; ++i) {
       const LightState& l = ctx.lights[i];
       if (l.type == LightType::kOff) continue;
+      // (A dark point light still rules the stepped path out, so that the skipping and the
+      // non-skipping variants take the same route: the same bits.)
+      point_light = point_light || l.type == LightType::kPoint;
       const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
       if (skipping && dark) continue;  // adds exactly 0
       // A directional light seen from an eye at infinity has one H everywhere.
@@ -94,7 +97,6 @@ class PointShader {
         h_[lights_] = fx::normalize_fast(std::int64_t{l.direction.x.raw()},
                                          std::int64_t{l.direction.y.raw()},
                                          std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
-      point_light = point_light || l.type == LightType::kPoint;
       light_[lights_++] = &l;
     }
     // The stepped per-pixel evaluation (SpanStepper): directional lights only, and a triangle

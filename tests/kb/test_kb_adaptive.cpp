@@ -219,5 +219,60 @@ TEST(KbAdaptiveBudget, RandomTrianglesStayWithinOneLevelOfTheExactEvaluation) {
   EXPECT_GT(triangles_by_path[4], 0u);
 }
 
+// Shades every span with two methods set up on the same triangle and counts differing pixels.
+class SameImage final : public SpanTarget {
+ public:
+  SameImage(KbAdaptiveMethod& a, KbAdaptiveMethod& b) : a_(a), b_(b) {}
+  void span(const Span& s) override {
+    a_.shade_span(s, buf_a_);
+    b_.shade_span(s, buf_b_);
+    for (std::int32_t i = 0; i < s.x1 - s.x0; ++i) {
+      const Rgb8 p = buf_a_[i], q = buf_b_[i];
+      differing += (p.r != q.r || p.g != q.g || p.b != q.b) ? 1 : 0;
+      ++pixels;
+    }
+  }
+  std::uint64_t differing = 0, pixels = 0;
+
+ private:
+  KbAdaptiveMethod& a_;
+  KbAdaptiveMethod& b_;
+  Rgb8 buf_a_[kMaxDimension], buf_b_[kMaxDimension];
+};
+
+// Skipping (lights that add exactly 0, constant triangles filled) must not change a pixel, also
+// when some lights are dark: a dark point light must keep both variants on the same evaluation
+// route (the stepped per-pixel path takes directional lights only).
+TEST(KbAdaptiveSkipping, RandomTrianglesWithDarkLightsMatchTheNoSkipVariant) {
+  Random rnd(77);
+  Counters counters;
+  auto skip = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kAdaptive);
+  auto noskip = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kNoSkip);
+  std::uint64_t pixels = 0, differing = 0;
+  int with_dark_point = 0;
+  for (int t = 0; t < 2000; ++t) {
+    Scenario sc = rnd.scenario();
+    if (sc.tri.area2 == 0) continue;
+    bool dark_point = false;
+    for (LightState& l : sc.ctx.lights) {
+      if (l.type == LightType::kOff || rnd.integer(0, 2) != 0) continue;
+      for (q15_16& c : l.color) c = q15_16::zero();
+      dark_point = dark_point || l.type == LightType::kPoint;
+    }
+    with_dark_point += dark_point ? 1 : 0;
+    sc.ctx.counters = &counters;
+    ASSERT_TRUE(skip->setup(sc.tri, sc.ctx));
+    ASSERT_TRUE(noskip->setup(sc.tri, sc.ctx));
+    SameImage probe(*skip, *noskip);
+    rasterize(sc.tri, 256, 256, probe);
+    pixels += probe.pixels;
+    differing += probe.differing;
+  }
+  std::printf("%d triangles with a dark point light; %llu of %llu pixels differ\n", with_dark_point,
+              static_cast<unsigned long long>(differing), static_cast<unsigned long long>(pixels));
+  EXPECT_GT(with_dark_point, 100);
+  EXPECT_EQ(differing, 0u);
+}
+
 }  // namespace
 }  // namespace tp::fw::kb
