@@ -163,9 +163,10 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
   using cosn::fd_detail::mul_shr;
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   const Monomials at = monomials(u, v);
+  if (n <= 1) return seed_short(s, at, nullptr);  // (its steps may point far outside the cell)
   if (n <= kShortPiece) {
     const Monomials second = monomials(u + s.du, v + s.dv);
-    return seed_short(s, at, n > 1 ? &second : nullptr);
+    return seed_short(s, at, &second);
   }
   QuadStep st;
   st.v = value_at(s.q, at);

@@ -103,9 +103,14 @@ class PointShader {
     // small enough that its weights keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled
     // by 2^-bits(area2) so that Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0,
     // Σ k_i = area2).
-    steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30);
+    // The per-pixel steps dk_i·(.) must fit as well: |dk_i| < 2^bits(area2), which only slivers
+    // (long edges around a small area) fail; they keep the per-pixel weights.
+    const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
+    const Lambdas dk = lambdas_step_x(tri);
+    const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
+    const int step_bits = static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
+    steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
     if (steppable_) {
-      const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
       for (int i = 0; i < 3; ++i) {
         const ShadeVertex& v = tri.v[i];
         const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};

@@ -450,8 +450,10 @@ void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range
   QuadStep r, g, b;
   if (n <= kShortPiece) {
     // The channels share their steps (one cell): the monomials at the first two pixels, once.
+    // (The second pixel's only where there is one: a one-pixel piece's steps may point far
+    // outside the cell.)
     const Monomials at = monomials(u, v);
-    const Monomials second = monomials(u + q[0].du, v + q[0].dv);
+    const Monomials second = n > 1 ? monomials(u + q[0].du, v + q[0].dv) : at;
     const Monomials* next = n > 1 ? &second : nullptr;
     r = seed_short(q[0], at, next);
     g = seed_short(q[1], at, next);
@@ -546,7 +548,7 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
   const Crossing* crossing = crossings_ + leaf.first;
   if (n <= kShortPiece) {
     const Monomials at = monomials(u, v);
-    const Monomials second = monomials(u + leaf.q[0].du, v + leaf.q[0].dv);
+    const Monomials second = n > 1 ? monomials(u + leaf.q[0].du, v + leaf.q[0].dv) : at;
     const Monomials* next = n > 1 ? &second : nullptr;
     for (int c = 0; c < 3; ++c) st[c] = seed_short(leaf.q[c], at, next);
     for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_short(crossing[k].nl, at, next);
