@@ -152,10 +152,14 @@ class KbAdaptiveMethod final : public ShadingMethod {
   bool whole_in_range_ = false;
   std::int64_t du_ = 0, dv_ = 0;    // per pixel: dλ1/dx, dλ2/dx in Q.30
   std::int64_t de1_ = 0, de2_ = 0;  // per pixel: dE1, dE2 (exact edge-function steps)
-  // ⌊2^60 / area2⌋: num / area2 in Q.30 as one product per span piece instead of a division,
-  // for |num| <= 2·area2 (|num·recip| < 2^62); relative error below area2·2^-60.
+  // ⌊2^60 / area2⌋: num / area2 in Q.30 as one product per span piece instead of a division;
+  // relative error below area2·2^-60. num (an edge function at a pixel centre of the triangle,
+  // within [0, area2]) is kept within [−area2, 2·area2] so that |num·recip| < 2^62 whatever
+  // the caller passes.
   std::int64_t area_recip_ = 0;
   std::int64_t local_of(std::int64_t num) const {
+    const std::int64_t area = tri_->area2;
+    num = num < -area ? -area : (num > 2 * area ? 2 * area : num);
     return (num * area_recip_ + (std::int64_t{1} << 29)) >> 30;
   }
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.
