@@ -6,8 +6,9 @@
 //   subdivision — where the quadratic misses, the cells that miss are split into four, down to
 //     4^4, with exact L, H and N at every new sample point, so that near point lights converge
 //     toward per-pixel Phong instead of failing as angular interpolation of L does;
-//   exact — per pixel, on triangles with fewer pixels than refining would take samples, and on
-//     deepest-level cells that still miss.
+//   exact — per pixel, on triangles under 64 pixels (their samples would cost more), on
+//     triangles with fewer pixels than refining would take samples, and on deepest-level cells
+//     that still miss.
 // The exact evaluation (kb_sample.hpp) is Blinn-Phong at the perspective-correct point, and the
 // budget bounds the difference from it: every pixel of a cheap path within kBudgetLevels.
 //

@@ -2,15 +2,16 @@
 // (kb_adaptive.hpp; the derivation and the measurements are in docs/KUIJK-BLAKE.md,
 // "kb-adaptive").
 //
-// Setup: the highlight guard and the terminators (kb_adaptive_caps.cpp), exact samples on the
-// triangle's quarter lattice (the six points of the quadratic and the nine check points), then
+// Setup: a triangle under 64 pixels is evaluated per pixel at once; else the highlight guard and
+// the terminators (kb_adaptive_caps.cpp), exact samples on the triangle's quarter lattice (the
+// six points of the quadratic and the nine check points), then
 //   1. the quadratic passes its check → constant, linear or quadratic, the simplest whose added
 //      error keeps the estimate within the budget;
 //   2. else, a small triangle (fewer pixels than the samples refining would take) → per pixel;
 //   3. else subdivision: each cell that fails its check is split into four, down to 4^4 cells,
 //      reusing its check points as the children's samples; a deepest cell that still fails is
 //      evaluated per pixel.
-// Terminators crossing a large triangle are sampled unclamped and clamped per pixel (add_leaf).
+// Terminators crossing a triangle are sampled unclamped and clamped per pixel (add_leaf).
 // Span: the pieces of the span in each leaf cell, each seeded once and forward-differenced.
 #include "firmware/kb/kb_adaptive.hpp"
 
