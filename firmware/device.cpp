@@ -378,7 +378,7 @@ Error Device::draw(const DrawCmd& cmd) {
   ClipVertex* cache = region<ClipVertex>(state_.off_cache);
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
     ClipVertex tmp;
-    if (!transform_vertex(state_.modelview, state_.projection, verts[i], tmp))
+    if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
       return fail(Error::kOutOfRange);
   }
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i)

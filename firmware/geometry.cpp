@@ -106,7 +106,7 @@ int homogeneous_orientation(const ClipVertex v[3]) {
   return det.sign();
 }
 
-bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out) {
+bool transform_position(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out) {
   const wide px = in.position.x.raw(), py = in.position.y.raw(), pz = in.position.z.raw();
   wide eye[3];
   for (int i = 0; i < 3; ++i) {
@@ -122,6 +122,11 @@ bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVe
   out.eye = {q15_16::from_raw(static_cast<std::int32_t>(eye[0])),
              q15_16::from_raw(static_cast<std::int32_t>(eye[1])),
              q15_16::from_raw(static_cast<std::int32_t>(eye[2]))};
+  return true;
+}
+
+bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out) {
+  if (!transform_position(mv, proj, in, out)) return false;
   const wide nx = in.normal.x.raw(), ny = in.normal.y.raw(), nz = in.normal.z.raw();
   out.normal = normalize_wide(row_times(mv, 0, nx, ny, nz, 0), row_times(mv, 1, nx, ny, nz, 0),
                               row_times(mv, 2, nx, ny, nz, 0));

@@ -24,6 +24,9 @@ struct ClipVertex {
 // MV * position and P * (MV * position); the normal by MV's upper 3x3, renormalised
 // (rigid motion + uniform scale assumed). False if a result does not fit Q15.16.
 bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out);
+// The position part alone (clip and eye; the normal untouched): whether transform_vertex
+// succeeds, for the draw's validation pass, at a third of its cost.
+bool transform_position(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out);
 
 // Clip planes, in homogeneous space (before the divide): the near plane z >= -w, w >= 2^-12,
 // and a guard band |x| <= 64 w, |y| <= 64 w that bounds screen coordinates (raster.hpp) without
