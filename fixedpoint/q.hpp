@@ -32,8 +32,10 @@ constexpr int storage_bits = std::numeric_limits<S>::digits;  // excludes the si
 // magnitude is below 2^62 (the bias cannot overflow); callers stay far inside that.
 constexpr wide_t round_shift_right(wide_t v, int shift) {
   if (shift <= 0) return v;
+  // For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
+  // shift: v >> 63 supplies the −1 without a branch on the sign.
   const wide_t half = wide_t{1} << (shift - 1);
-  return v >= 0 ? (v + half) >> shift : -((-v + half) >> shift);
+  return (v + half + (v >> 63)) >> shift;
 }
 
 constexpr wide_t clamp(wide_t v, wide_t lo, wide_t hi) { return v < lo ? lo : (v > hi ? hi : v); }

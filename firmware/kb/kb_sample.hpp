@@ -31,16 +31,14 @@ inline std::int64_t dot_unit(const Vec3u& a, const Vec3u& b) {
 // value where no saturation can occur (|a·b| < 2 here: material weights and cosines).
 inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); }
 
-// A vector cut to at most 30 bits per component (rounding half up: only its direction matters)
-// and the reciprocal root of its squared length; a zero vector keeps inv.r == 0.
+// A vector cut by `cut` bits to at most 30 bits per component (rounding half up: only its
+// direction matters) and the reciprocal root of its squared length; a zero vector keeps
+// inv.r == 0.
 struct CutVector {
   std::int64_t c[3] = {0, 0, 0};
-  fx::RsqrtFast inv;
+  fx::RsqrtFast inv{0, 1};  // zero: over_length gives (x·0 + 1) >> 1 = 0
 };
-inline CutVector cut_vector(const std::int64_t v[3]) {
-  const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
-  const int w = static_cast<int>(std::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2])));
-  const int cut = w > 30 ? w - 30 : 0;
+inline CutVector cut_vector(const std::int64_t v[3], int cut) {
   const std::int64_t bias = cut > 0 ? std::int64_t{1} << (cut - 1) : 0;
   CutVector r;
   for (int j = 0; j < 3; ++j) r.c[j] = (v[j] + bias) >> cut;
@@ -48,9 +46,10 @@ inline CutVector cut_vector(const std::int64_t v[3]) {
   if (s != 0) r.inv = fx::rsqrt_fast(s);  // s <= 3·2^60
   return r;
 }
+// The cut that brings components below 2^bits to at most 30 bits.
+constexpr int cut_for(int bits) { return bits > 30 ? bits - 30 : 0; }
 // x / |v| in Q1.30 for x in v's units, |x| <= 3·2^30: (x·r) >> shift, rounded (x·r < 2^63).
 inline std::int64_t over_length(std::int64_t x, const CutVector& v) {
-  if (v.inv.r == 0) return 0;
   return (x * v.inv.r + (std::int64_t{1} << (v.inv.shift - 1))) >> v.inv.shift;
 }
 // The cosine between a and b, a·b / (|a||b|), in Q1.30 (0 if either is zero).
@@ -111,6 +110,7 @@ class PointShader {
     const int step_bits = static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
     steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
     if (steppable_) {
+      std::uint64_t max_normal = 0, max_eye = 0;
       for (int i = 0; i < 3; ++i) {
         const ShadeVertex& v = tri.v[i];
         const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};
@@ -118,45 +118,57 @@ class PointShader {
         for (int j = 0; j < 3; ++j) {
           weighted_normal_[i][j] = fx::detail::round_shift_right(r_[i] * n[j], scale);
           weighted_eye_[i][j] = fx::detail::round_shift_right(r_[i] * e[j], scale);
+          max_normal |= mag(weighted_normal_[i][j]);
+          max_eye |= mag(weighted_eye_[i][j]);
         }
       }
+      set_planes(tri);
+      // Inside the triangle n and p are convex combinations of area2·(r_i N_i) and area2·(r_i P_i)
+      // (k_i >= 0, Σ k_i = area2): every component below 2^(bits(area2) + bits(max)). One cut
+      // for the whole triangle brings them to 30 bits, instead of measuring every pixel's.
+      normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
+      eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
     }
   }
 
   // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
-  // the triangle's scale) are linear in screen x, so they are stepped by additions, exactly, and
-  // N·L, N·E, L·E and N·H are cosines between them and the unit light directions (no unit vector
-  // is formed: one reciprocal root per vector, and one for |L + E|). Directional lights only
-  // (steppable()): a point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
+  // the triangle's scale) are linear in screen x and y, so they start each span from the
+  // triangle's planes and step along it by additions, exactly, and N·L, N·E, L·E and N·H are
+  // cosines between them and the unit light directions (no unit vector is formed: one
+  // reciprocal root per vector, and one for |L + E|). Directional lights only (steppable()): a
+  // point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
   struct SpanStepper {
-    std::int64_t n[3] = {0, 0, 0}, dn[3] = {0, 0, 0}, p[3] = {0, 0, 0}, dp[3] = {0, 0, 0};
-    void step() {
-      for (int j = 0; j < 3; ++j) {
-        n[j] += dn[j];
-        p[j] += dp[j];
-      }
-    }
+    std::int64_t n[3] = {0, 0, 0}, p[3] = {0, 0, 0};
   };
   bool steppable() const { return steppable_; }
-  // From the edge functions k at the span's first pixel centre and their steps dk per pixel.
-  SpanStepper span_stepper(const std::int64_t k[3], const std::int64_t dk[3]) const {
+  // At the centre of pixel (x, y) of a span. The planes are kept modulo 2^64 (unsigned: their
+  // value at the screen's origin may not fit), and the value at a pixel inside the triangle,
+  // below 2^61, comes out exact.
+  SpanStepper span_stepper(std::int32_t x, std::int32_t y) const {
+    const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x));
+    const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y));
     SpanStepper st;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        st.n[j] += k[i] * weighted_normal_[i][j];
-        st.p[j] += k[i] * weighted_eye_[i][j];
-        st.dn[j] += dk[i] * weighted_normal_[i][j];
-        st.dp[j] += dk[i] * weighted_eye_[i][j];
-      }
+    for (int j = 0; j < 3; ++j) {
+      st.n[j] = static_cast<std::int64_t>(normal_plane_[0][j] + ux * normal_plane_[1][j] + uy * normal_plane_[2][j]);
+      st.p[j] = static_cast<std::int64_t>(eye_plane_[0][j] + ux * eye_plane_[1][j] + uy * eye_plane_[2][j]);
+    }
     return st;
   }
-  // The level (Q.14, before the output clamp) of each channel at the stepper's pixel.
-  void shade_stepped(const SpanStepper& st, std::int32_t out[3]) const {
+  // To the next pixel in x (|n| and |p| stay below 2^62 one pixel past the span's end).
+  void step(SpanStepper& st) const {
+    for (int j = 0; j < 3; ++j) {
+      st.n[j] += normal_step_[j];
+      st.p[j] += eye_step_[j];
+    }
+  }
+  // The output colour at the stepper's pixel: level_of's Q.14 level, rounded to an integer and
+  // clamped to [0, 255] (kb_quadratic.hpp's quad_level), in one step.
+  Rgb8 shade_stepped(const SpanStepper& st) const {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
     const bool finite = ctx_->eye == EyeMode::kFinite;
-    const CutVector n = cut_vector(st.n);
+    const CutVector n = cut_vector(st.n, normal_cut_);
     CutVector e;  // toward the point from the eye (−E), finite eye only
-    if (finite) e = cut_vector(st.p);
+    if (finite) e = cut_vector(st.p, eye_cut_);
     const std::int64_t normal_eye = finite ? -cosine(n, e) : over_length(n.c[2], n);  // N·E
     for (int li = 0; li < lights_; ++li) {
       const LightState& l = *light_[li];
@@ -172,7 +184,7 @@ class PointShader {
       }
       add_light(l, ndl, ndh, acc);
     }
-    for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
+    return Rgb8{output_level(acc[0]), output_level(acc[1]), output_level(acc[2])};
   }
 
   // The geometry at a point: normal, eye direction, and the eye-space position as s·P (p, in
@@ -326,6 +338,32 @@ class PointShader {
     }
   }
 
+  // The edge functions k_i are exact linear functions of the subpixel position, so n and p are
+  // too: their value at pixel (0, 0) and their changes per pixel in x and in y (16 subpixels).
+  void set_planes(const Triangle& tri) {
+    const Lambdas origin = lambdas_at(tri, 8, 8);
+    const Lambdas dx = lambdas_step_x(tri);
+    const std::int64_t dy[3] = {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
+                                16 * (std::int64_t{tri.v[0].sx} - tri.v[2].sx),
+                                16 * (std::int64_t{tri.v[1].sx} - tri.v[0].sx)};
+    const std::int64_t* k[3] = {origin.l, dx.l, dy};
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 3; ++j) {
+        std::uint64_t n = 0, e = 0;
+        for (int i = 0; i < 3; ++i) {
+          const auto w = static_cast<std::uint64_t>(k[a][i]);
+          n += w * static_cast<std::uint64_t>(weighted_normal_[i][j]);
+          e += w * static_cast<std::uint64_t>(weighted_eye_[i][j]);
+        }
+        normal_plane_[a][j] = n;
+        eye_plane_[a][j] = e;
+      }
+    for (int j = 0; j < 3; ++j) {
+      normal_step_[j] = static_cast<std::int64_t>(normal_plane_[1][j]);
+      eye_step_[j] = static_cast<std::int64_t>(eye_plane_[1][j]);
+    }
+  }
+
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
   static int shift_for(std::int64_t bits) {
     const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
@@ -342,12 +380,27 @@ class PointShader {
     return static_cast<std::int32_t>(fx::detail::round_shift_right(v * 255, 30 - kFrac));
   }
 
+  // level_of(i) rounded half up to an integer and clamped to [0, 255]: 0 for i <= 0 (a level
+  // <= 0), 255 for i >= 2^30 (>= 255), and between them level_of's symmetric rounding is the
+  // plain half-up one of a positive value, whose result needs no clamp.
+  static std::uint8_t output_level(std::int64_t i_q30) {
+    if (i_q30 <= 0) return 0;
+    if (i_q30 >= (std::int64_t{1} << 30)) return 255;
+    const std::int64_t q14 = (i_q30 * 255 + (std::int64_t{1} << (29 - kFrac))) >> (30 - kFrac);
+    return static_cast<std::uint8_t>((q14 + (std::int64_t{1} << (kFrac - 1))) >> kFrac);
+  }
+
   const Triangle* tri_ = nullptr;
   const ShadeContext* ctx_ = nullptr;
   bool skipping_ = true;
   bool steppable_ = false;
   std::int64_t weighted_normal_[3][3] = {};  // r_i·N_i, scaled by 2^-bits(area2)
   std::int64_t weighted_eye_[3][3] = {};     // r_i·P_i, likewise
+  // The planes of n and p over the screen: [0] at the centre of pixel (0, 0), [1] per pixel in
+  // x, [2] per row, modulo 2^64; the x steps again as signed values.
+  std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};
+  std::int64_t normal_step_[3] = {0, 0, 0}, eye_step_[3] = {0, 0, 0};
+  int normal_cut_ = 0, eye_cut_ = 0;
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30

@@ -629,19 +629,16 @@ Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {
 // the row where PointShader can (directional lights, area2 < 2^30: exact integer steps, so a
 // pixel gets the same value whichever span piece it starts), else formed at each pixel.
 void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
-  Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
-  const Lambdas step = lambdas_step_x(*tri_);
   const auto level = [](std::int32_t v) {
     return quad_level(std::int64_t{v} * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
   };
-  std::int32_t g[3];
   if (point_.steppable()) {
-    PointShader::SpanStepper st = point_.span_stepper(lam.l, step.l);
-    for (std::int32_t x = 0; x < n; ++x, st.step()) {
-      point_.shade_stepped(st, g);
-      out[x] = Rgb8{level(g[0]), level(g[1]), level(g[2])};
-    }
+    PointShader::SpanStepper st = point_.span_stepper(xa, y);
+    for (std::int32_t x = 0; x < n; ++x, point_.step(st)) out[x] = point_.shade_stepped(st);
   } else {
+    std::int32_t g[3];
+    Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
+    const Lambdas step = lambdas_step_x(*tri_);
     for (std::int32_t x = 0; x < n; ++x) {
       point_.at(lam.l[0], lam.l[1], lam.l[2], g);
       out[x] = Rgb8{level(g[0]), level(g[1]), level(g[2])};
