@@ -453,7 +453,8 @@ void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const
   ++counters_.triangles_drawn;
   PixelWriter writer(*this, t, m);
   (void)rasterize(t, static_cast<std::int32_t>(state_.viewport.width),
-                  static_cast<std::int32_t>(state_.viewport.height), writer);
+                  static_cast<std::int32_t>(state_.viewport.height), writer,
+                  m.reads_edge_positions() ? EdgeParameters::kWith : EdgeParameters::kWithout);
 }
 
 FramebufferView Device::framebuffer() const {

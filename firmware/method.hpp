@@ -46,7 +46,9 @@ constexpr std::int64_t edge_function(const ShadeVertex& a, const ShadeVertex& b,
 }
 
 // Where one end of a span lies: on the edge from vertex `from` to vertex `to` (from above to),
-// at parameter t in [0, 1] (Q1.30) measured from `from`, at the row's centre line.
+// at parameter t in [0, 1] (Q1.30) measured from `from`, at the row's centre line. t costs a
+// division per end and row: the rasterizer fills it only for the methods that read it
+// (ShadingMethod::reads_edge_positions()); for the others it stays 0.
 struct EdgePos {
   std::uint8_t from = 0, to = 0;
   q1_30 t;
@@ -78,6 +80,8 @@ class ShadingMethod {
   virtual bool setup(const Triangle& tri, const ShadeContext& ctx) = 0;
   // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0).
   virtual void shade_span(const Span& s, Rgb8* out) = 0;
+  // Whether shade_span reads Span::left.t and right.t (see EdgePos).
+  virtual bool reads_edge_positions() const { return false; }
 
  protected:
   ~ShadingMethod() = default;

@@ -37,7 +37,8 @@ class EdgeWalker {
     }
   }
   std::int64_t ix() const { return ix_; }
-  EdgePos pos(std::int32_t yc) const {
+  EdgePos pos(std::int32_t yc, EdgeParameters edges) const {
+    if (edges == EdgeParameters::kWithout) return EdgePos{from_, to_, q1_30::zero()};
     // t = (yc - ay) / dy in [0, 1): the row centre lies on the edge's half-open y range.
     const auto t = fx::div<q1_30>(fx::Q<62, 0, std::int64_t>::from_raw(std::int64_t{yc} - ay_),
                                   fx::Q<62, 0, std::int64_t>::from_raw(dy_));
@@ -57,7 +58,7 @@ constexpr std::int64_t clamp64(std::int64_t v, std::int64_t lo, std::int64_t hi)
 }  // namespace
 
 std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t height,
-                        SpanTarget& target) {
+                        SpanTarget& target, EdgeParameters edges) {
   // Sort the vertices top to bottom (indices only: the method sees the triangle unchanged).
   std::uint8_t top = 0, mid = 1, bot = 2;
   const auto y = [&](std::uint8_t i) { return tri.v[i].sy; };
@@ -104,7 +105,7 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
     const std::int64_t x1 = clamp64(r.ix(), 0, width);
     if (x0 < x1) {
       target.span(Span{row, static_cast<std::int32_t>(x0), static_cast<std::int32_t>(x1),
-                       l.pos(yc), r.pos(yc)});
+                       l.pos(yc, edges), r.pos(yc, edges)});
       ++spans;
     }
     long_edge.step();

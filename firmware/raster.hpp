@@ -31,10 +31,13 @@ class SpanTarget {
   ~SpanTarget() = default;
 };
 
+// Whether the spans carry the edge parameter t of their ends (EdgePos::t).
+enum class EdgeParameters : std::uint8_t { kWithout, kWith };
+
 // Calls target.span() for every non-empty span of tri inside [0, width) x [0, height), top row
 // first. tri.area2 must be > 0. Returns the number of spans.
 std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t height,
-                        SpanTarget& target);
+                        SpanTarget& target, EdgeParameters edges = EdgeParameters::kWith);
 
 // Integer division rounding toward +infinity / -infinity, for d > 0.
 constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {

@@ -46,6 +46,7 @@ class KbOneVectorMethod final : public ShadingMethod {
       : skipping_(skipping), coherent_(coherent), o_choice_(o) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool reads_edge_positions() const override { return true; }
 
   // The two halves of shade_span, public so that the benchmark can time the span setup alone:
   // prepare_span builds the summed sections of the span, evaluate_span steps them.
@@ -133,6 +134,7 @@ class KbDecompositionMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool reads_edge_positions() const override { return true; }
 
  private:
   struct Factor {  // one forward-differenced f along the span
@@ -158,6 +160,7 @@ class KbExactMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool reads_edge_positions() const override { return true; }
 
  private:
   struct Term {
