@@ -35,6 +35,16 @@ std::uint32_t depth_word(std::int64_t z_q30) {
   const std::int64_t d = (z_q30 + (std::int64_t{1} << 30)) * 2;
   return d <= 0 ? 0u : (d >= std::int64_t{kDepthFar} ? kDepthFar : static_cast<std::uint32_t>(d));
 }
+// Whether depth_word(z_q30) needs no saturation (monotonic in z: true at both ends of a linear
+// run means true along it).
+bool depth_in_range(std::int64_t z_q30) {
+  const std::int64_t d = (z_q30 + (std::int64_t{1} << 30)) * 2;
+  return d > 0 && d < std::int64_t{kDepthFar};
+}
+// depth_word where depth_in_range holds.
+std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
+  return static_cast<std::uint32_t>((z_q30 + (std::int64_t{1} << 30)) * 2);
+}
 
 }  // namespace
 
@@ -63,21 +73,14 @@ class PixelWriter final : public SpanTarget {
     const Run run{colours, depth, colour_row, counts, zplane_.at(lam) << ScreenPlane::kStepFrac,
                   zplane_.step_x(), s.x0, s.x1};
     // The format, the depth test and the write counts are fixed for the draw: one loop for each
-    // combination, chosen here, so that the pixel loop branches on none of them.
+    // combination, chosen here, so that the pixel loop branches on none of them. The depth is
+    // linear along the span: when both ends' depth words need no saturation, none does.
     const bool rgb565 = st.viewport.format == PixelFormat::kRgb565;
+    const bool exact_depth =
+        depth_in_range(run.z >> ScreenPlane::kStepFrac) &&
+        depth_in_range((run.z + run.dz * (s.x1 - s.x0 - 1)) >> ScreenPlane::kStepFrac);
     const int variant = (rgb565 ? 4 : 0) | (st.depth_test ? 2 : 0) | (counts != nullptr ? 1 : 0);
-    std::uint64_t written = 0;
-    switch (variant) {
-      case 0: written = write<false, false, false>(run); break;
-      case 1: written = write<false, false, true>(run); break;
-      case 2: written = write<false, true, false>(run); break;
-      case 3: written = write<false, true, true>(run); break;
-      case 4: written = write<true, false, false>(run); break;
-      case 5: written = write<true, false, true>(run); break;
-      case 6: written = write<true, true, false>(run); break;
-      default: written = write<true, true, true>(run); break;
-    }
-    c.pixels_written += written;
+    c.pixels_written += exact_depth ? write_variant<true>(variant, run) : write_variant<false>(variant, run);
   }
 
  private:
@@ -90,30 +93,52 @@ class PixelWriter final : public SpanTarget {
     std::int64_t z, dz;  // depth plane, ScreenPlane::kStepFrac more fraction bits
     std::int32_t x0, x1;
   };
-  // Depth-tests and writes the span; returns the pixels written.
-  template <bool kRgb565, bool kDepthTest, bool kCounts>
+  template <bool kExactDepth>
+  static std::uint64_t write_variant(int variant, const Run& run) {
+    switch (variant) {
+      case 0: return write<false, false, false, kExactDepth>(run);
+      case 1: return write<false, false, true, kExactDepth>(run);
+      case 2: return write<false, true, false, kExactDepth>(run);
+      case 3: return write<false, true, true, kExactDepth>(run);
+      case 4: return write<true, false, false, kExactDepth>(run);
+      case 5: return write<true, false, true, kExactDepth>(run);
+      case 6: return write<true, true, false, kExactDepth>(run);
+      default: return write<true, true, true, kExactDepth>(run);
+    }
+  }
+  // Depth-tests and writes the span; returns the pixels written. kExactDepth: every pixel's depth
+  // word is inside (0, kDepthFar), so depth_word's saturation is left out.
+  template <bool kRgb565, bool kDepthTest, bool kCounts, bool kExactDepth>
   static std::uint64_t write(const Run& r) {
     constexpr int f = ScreenPlane::kStepFrac;
+    // Locals, not r's fields: the byte stores below may alias anything, and would make the
+    // compiler reload every field at every pixel.
+    const Rgb8* colour = r.colours;  // the method's colour of pixel x
+    std::uint32_t* const depth = r.depth;
+    std::uint8_t* const colour_row = r.colour_row;
+    std::uint8_t* const counts = r.counts;
+    const std::int64_t dz = r.dz;
+    const std::int32_t x1 = r.x1;
     std::uint64_t written = 0;
     std::int64_t z = r.z;
-    for (std::int32_t x = r.x0; x < r.x1; ++x, z += r.dz) {
+    for (std::int32_t x = r.x0; x < x1; ++x, z += dz, ++colour) {
       const auto i = static_cast<std::size_t>(x);
-      const std::uint32_t d = depth_word(z >> f);
-      if (kDepthTest && !(d < r.depth[i])) continue;
-      r.depth[i] = d;
-      const Rgb8 px = r.colours[x - r.x0];
+      const std::uint32_t d = kExactDepth ? depth_word_unsaturated(z >> f) : depth_word(z >> f);
+      if (kDepthTest && !(d < depth[i])) continue;
+      depth[i] = d;
+      const Rgb8 px = *colour;
       if constexpr (kRgb565) {
         // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
         const auto v = static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
-        r.colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
-        r.colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
+        colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
+        colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
       } else {
-        r.colour_row[3 * i] = px.r;
-        r.colour_row[3 * i + 1] = px.g;
-        r.colour_row[3 * i + 2] = px.b;
+        colour_row[3 * i] = px.r;
+        colour_row[3 * i + 1] = px.g;
+        colour_row[3 * i + 2] = px.b;
       }
       if constexpr (kCounts) {
-        if (r.counts[i] != 0xff) ++r.counts[i];
+        if (counts[i] != 0xff) ++counts[i];
       }
       ++written;
     }
