@@ -21,13 +21,18 @@ struct Radiance {
 // rounding of fx::mul_sat (ties away from zero = half up for non-negative values) without its
 // saturation, which no product reaches (x^n < 2). Inline: kb-adaptive takes it at every sample
 // and exact pixel (kb/kb_sample.hpp).
+//
+// The first product of the result, 1·x^(2^k), is exact ((2^30·b + 2^29) >> 30 = b), so it is
+// taken as is: the same value with one multiplication and test less.
 inline q1_30 power(q1_30 x, std::uint32_t n) {
   const auto mul = [](std::int64_t a, std::int64_t b) { return (a * b + (std::int64_t{1} << 29)) >> 30; };
-  std::int64_t result = std::int64_t{1} << 30, base = x.raw();
-  while (n != 0) {
+  if (n == 0) return q1_30::one();
+  std::int64_t base = x.raw();
+  for (; (n & 1u) == 0; n >>= 1) base = mul(base, base);
+  std::int64_t result = base;
+  for (n >>= 1; n != 0; n >>= 1) {
+    base = mul(base, base);
     if ((n & 1u) != 0) result = mul(result, base);
-    n >>= 1;
-    if (n != 0) base = mul(base, base);
   }
   return q1_30::from_raw(static_cast<std::int32_t>(result));
 }
