@@ -178,7 +178,9 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
 // Output level of a state value: round, clamp to [0, 255].
 constexpr std::uint8_t quad_level(std::int64_t v) {
   const std::int64_t l = (v + (std::int64_t{1} << (kQuadStateFrac - 1))) >> kQuadStateFrac;
-  return static_cast<std::uint8_t>(l < 0 ? 0 : (l > 255 ? 255 : l));
+  // One unsigned comparison for the usual case, in [0, 255]; the clamp only outside it.
+  if (static_cast<std::uint64_t>(l) <= 255u) return static_cast<std::uint8_t>(l);
+  return l < 0 ? std::uint8_t{0} : std::uint8_t{255};
 }
 
 }  // namespace tp::fw::kb
