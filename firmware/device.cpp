@@ -119,12 +119,15 @@ class PixelWriter final : public SpanTarget {
     std::uint8_t* const counts = r.counts;
     const std::int64_t dz = r.dz;
     const std::int32_t x1 = r.x1;
-    std::uint64_t written = 0;
+    std::uint64_t rejected = 0;  // by the depth test (counted there: the rarer case)
     std::int64_t z = r.z;
     for (std::int32_t x = r.x0; x < x1; ++x, z += dz, ++colour) {
       const auto i = static_cast<std::size_t>(x);
       const std::uint32_t d = kExactDepth ? depth_word_unsaturated(z >> f) : depth_word(z >> f);
-      if (kDepthTest && !(d < depth[i])) continue;
+      if (kDepthTest && !(d < depth[i])) {
+        ++rejected;
+        continue;
+      }
       depth[i] = d;
       const Rgb8 px = *colour;
       if constexpr (kRgb565) {
@@ -140,9 +143,8 @@ class PixelWriter final : public SpanTarget {
       if constexpr (kCounts) {
         if (counts[i] != 0xff) ++counts[i];
       }
-      ++written;
     }
-    return written;
+    return static_cast<std::uint64_t>(x1 - r.x0) - rejected;
   }
 
   Device& dev_;

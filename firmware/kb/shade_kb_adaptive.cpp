@@ -15,6 +15,9 @@
 // Span: the pieces of the span in each leaf cell, each seeded once and forward-differenced.
 #include "firmware/kb/kb_adaptive.hpp"
 
+#include <algorithm>
+#include <utility>
+
 #include "firmware/interp.hpp"
 #include "firmware/lighting.hpp"
 #include "firmware/raster.hpp"
@@ -191,17 +194,26 @@ void KbAdaptiveMethod::cell_points(const Cell& cell, const std::int32_t* v[15]) 
 }
 
 namespace {
+// 8·|g − q| at check point K: its weights are compile-time constants, so the zero ones (the
+// edge points') and the small ones fold away.
+template <std::size_t K>
+std::int64_t point_error(const std::int64_t s[6], const std::int32_t* const v[15], int ch) {
+  constexpr SampleWeights w = kCheckWeights[K];
+  const std::int64_t q8 = w.w[0] * s[0] + w.w[1] * s[1] + w.w[2] * s[2] + w.w[3] * s[3] + w.w[4] * s[4] +
+                          w.w[5] * s[5];
+  return abs64(8 * std::int64_t{v[6 + K][ch]} - q8);
+}
+template <std::size_t... K>
+std::int64_t worst_point_error(const std::int64_t s[6], const std::int32_t* const v[15], int ch,
+                               std::index_sequence<K...>) {
+  std::int64_t worst = 0;
+  ((worst = std::max(worst, point_error<K>(s, v, ch))), ...);
+  return worst;
+}
 // max over the nine check points of |g − q| for channel ch (rounded up).
 std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
   const std::int64_t s[6] = {v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]};
-  std::int64_t worst = 0;
-  for (int k = 0; k < 9; ++k) {
-    const std::int64_t* w = kCheckWeights[static_cast<std::size_t>(k)].w;
-    const std::int64_t q8 = w[0] * s[0] + w[1] * s[1] + w[2] * s[2] + w[3] * s[3] + w[4] * s[4] + w[5] * s[5];
-    const std::int64_t e = abs64(8 * std::int64_t{v[6 + k][ch]} - q8);  // 8·(g − q)
-    if (e > worst) worst = e;
-  }
-  return (worst + 7) / 8;
+  return (worst_point_error(s, v, ch, std::make_index_sequence<9>{}) + 7) / 8;
 }
 }  // namespace
 
