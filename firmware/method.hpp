@@ -1,4 +1,4 @@
-// The per-method interface (DESIGN §6): every shading method is one class behind this.
+// The per-method interface (docs/CONVENTIONS.md, "Methods"): every shading method is one class behind this.
 //
 // The pipeline is setup -> traversal -> shading, kept apart:
 //   1. geometry (geometry.cpp) transforms, clips and projects; each triangle that reaches the

@@ -1,4 +1,4 @@
-// The span rasterizer (DESIGN §5): edge walking in y, spans in x, top-left fill rule.
+// The span rasterizer: edge walking in y, spans in x, top-left fill rule.
 //
 // Coverage (docs/CONVENTIONS.md): pixel (i, j) is covered when its centre (16 i + 8, 16 j + 8)
 // in 1/16-pixel units is strictly inside the triangle, or on a top or left edge. In scanline

@@ -1,4 +1,4 @@
-// The Kuijk-Blake shading methods (DESIGN §7), one unit each:
+// The Kuijk-Blake shading methods (Kuijk & Blake; docs/KUIJK-BLAKE.md), one unit each:
 //   KbOneVectorMethod      eq. 4: V = R(N→O)·L per vertex (H for specular), V alone slerped;
 //                          per span cos^n α = f(φ)·f(s), summed sections (shade_kb_one_vector.cpp)
 //   KbDecompositionMethod  eq. 2: N and L (H) slerped separately; per span
