@@ -80,6 +80,7 @@ class PointShader {
       ambient_[c] = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
       diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
     }
+    update_spec_zero(m);
     lights_ = 0;
     bool point_light = false;
     for (std::size_t i = 0; i < kMaxLights; ++i) {
@@ -90,6 +91,8 @@ class PointShader {
       point_light = point_light || l.type == LightType::kPoint;
       const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
       if (skipping && dark) continue;  // adds exactly 0
+      white_[lights_] = l.color[0].raw() == kUnitIntensity && l.color[1].raw() == kUnitIntensity &&
+                        l.color[2].raw() == kUnitIntensity;
       // A directional light seen from an eye at infinity has one H everywhere.
       fixed_h_[lights_] = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;
       if (fixed_h_[lights_])
@@ -182,7 +185,7 @@ class PointShader {
         const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
         ndh = halfway_cosine(normal_light + normal_eye, light_eye);
       }
-      add_light(l, ndl, ndh, acc);
+      add_light(li, ndl, ndh, acc);
     }
     return Rgb8{output_level(acc[0]), output_level(acc[1]), output_level(acc[2])};
   }
@@ -305,14 +308,13 @@ class PointShader {
     int k = 3;
     if (pt.inside) {
       for (int li = 0; li < lights_; ++li) {
-        const LightState& l = *light_[li];
         const Vec3u lv = light_direction(pt, li);
         const std::int64_t dot_l = dot_unit(pt.normal, lv);
         const bool open = ((unclamped >> li) & 1u) != 0;
         if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l, 6));
         const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
         const std::int64_t ndh = normal_halfway(pt, li, lv, dot_l);
-        add_light(l, ndl, ndh, acc);
+        add_light(li, ndl, ndh, acc);
       }
     }
     for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
@@ -327,15 +329,51 @@ class PointShader {
  private:
   // One light's Blinn-Phong term in each channel's Q.30 sum, from max(0, N·L) (or the unclamped
   // N·L of a terminator) and max(0, N·H).
-  void add_light(const LightState& l, std::int64_t ndl, std::int64_t ndh, std::int64_t acc[3]) const {
-    if (skipping_ && ndl == 0 && ndh == 0) return;  // adds exactly 0
+  //
+  // Two shortcuts give the same bits as the full form (kNoSkip keeps the full form, and its
+  // images are tested to be identical): below spec_zero_below_ the specular term rounds to
+  // exactly 0, so the power is not taken; and a light of intensity exactly 1 in every channel
+  // scales by 2^16 / 2^16, which round_shift_right undoes exactly, so the term is added as is.
+  void add_light(int li, std::int64_t ndl, std::int64_t ndh, std::int64_t acc[3]) const {
+    const bool no_spec = skipping_ && ndh < spec_zero_below_;
+    if (no_spec && ndl == 0) return;  // adds exactly 0
     const MaterialCmd& m = ctx_->material;
     const std::int64_t spec =
-        mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
+        no_spec ? 0 : mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
+    if (white_[li]) {
+      for (int c = 0; c < 3; ++c) acc[c] += mul_q30(diffuse_[c], ndl) + spec;
+      return;
+    }
+    const LightState& l = *light_[li];
     for (int c = 0; c < 3; ++c) {
       const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
       acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
     }
+  }
+
+  // The least N·H (Q1.30) whose specular term ks·(N·H)^n does not round to 0: both roundings
+  // are monotone in N·H, so a bisection finds it; kept until the exponent or ks changes.
+  void update_spec_zero(const MaterialCmd& m) {
+    if (m.n == spec_zero_n_ && m.ks.raw() == spec_zero_ks_) return;
+    spec_zero_n_ = m.n;
+    spec_zero_ks_ = m.ks.raw();
+    const auto spec = [&](std::int64_t x) {
+      return mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(x)), m.n).raw());
+    };
+    std::int64_t lo = 0, hi = std::int64_t{1} << 30;  // spec(lo) == 0 < spec(hi), or none is
+    if (spec(hi) == 0) {
+      spec_zero_below_ = hi + 1;  // never non-zero: every N·H (at most 2^30) gives 0
+      return;
+    }
+    if (spec(lo) != 0) {
+      spec_zero_below_ = 0;
+      return;
+    }
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (spec(mid) == 0 ? lo : hi) = mid;
+    }
+    spec_zero_below_ = hi;
   }
 
   // The edge functions k_i are exact linear functions of the subpixel position, so n and p are
@@ -406,6 +444,11 @@ class PointShader {
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30
   const LightState* light_[kMaxLights] = {};
   bool fixed_h_[kMaxLights] = {};
+  bool white_[kMaxLights] = {};  // intensity exactly 1 in every channel
+  static constexpr std::int32_t kUnitIntensity = std::int32_t{1} << 16;  // q15_16 one
+  std::int64_t spec_zero_below_ = 0;  // update_spec_zero
+  std::uint32_t spec_zero_n_ = 0;     // the exponent and ks it was found for (n >= 1: 0 is none)
+  std::int32_t spec_zero_ks_ = 0;
   Vec3u h_[kMaxLights];
   int lights_ = 0;
 };
