@@ -1,6 +1,6 @@
 // Regenerates the tables of docs/RESULTS.md: for every paper scene and every shading method,
 // the error against the double references and the frame time as a ratio to Gouraud measured
-// in the same run (DESIGN §9). Timing: the methods are interleaved round-robin, `--reps`
+// in the same run (docs/RESULTS.md). Timing: the methods are interleaved round-robin, `--reps`
 // rounds, and each method's median frame time is taken, so that machine noise hits all
 // methods alike.
 //

@@ -2,7 +2,7 @@
 //
 //   f(θ) = 1 − θ²/(ab)            |θ| <= a
 //          (|θ| − b)²/(b(b − a))  a < |θ| < b          (Kuijk-Blake section 2, labels
-//          0                      |θ| >= b              corrected as in DESIGN §8: a < b)
+//          0                      |θ| >= b              corrected as in docs/ACCURACY.md: a < b)
 //
 // (a, b) depend on n only and replace n as the material attribute. Three sources, each a
 // constexpr function n -> CosnParams (n is clamped to 1..10,000):
@@ -35,7 +35,7 @@ struct CosnParams {
 namespace detail {
 
 constexpr std::int64_t clamp_n(int n) {
-  return n < kMinN ? kMinN : (n > kMaxN ? kMaxN : n);
+  return fx::clamp(n, kMinN, kMaxN);
 }
 
 // round(num / den) for num >= 0, den > 0.
@@ -61,7 +61,7 @@ constexpr angle_t angle_raw(std::int64_t raw) { return angle_t::from_raw_sat(raw
 
 }  // namespace detail
 
-// Kuijk-Blake's closed forms with the labels exchanged (DESIGN §8):
+// Kuijk-Blake's closed forms with the labels exchanged (docs/ACCURACY.md, "Lookup-free cos^n"):
 //   a = (n + 5.6) / (n (0.09 n + 5.2)) = (100 n + 560) / (9 n² + 520 n)
 //   b = (n + 65) / (5 n + 31.7)        = (10 n + 650) / (50 n + 317)
 constexpr CosnParams paper_params(int n_in) {

@@ -1,6 +1,6 @@
 // Forward differencing of the Kuijk-Blake piecewise-quadratic f along a span line
 // θ(x) = θ0 + x·dθ (x = 0 .. length−1): the quadratic-segment state the span evaluator sums
-// over lights and terms (DESIGN §7, "Summed sections").
+// over lights and terms (docs/KUIJK-BLAKE.md, "How it works").
 //
 // State format: one fixed format for every term, Q.44 in int64 (kStateFrac), so states of
 // different terms add. Within a segment, the value is an exact integer polynomial
@@ -73,14 +73,7 @@ using i64 = std::int64_t;
 
 // round(a·b / 2^sh), ties away from zero, exact (128-bit product). Callers keep the result
 // below 2^63 (bounds in the header comment).
-constexpr i64 mul_shr(i64 a, i64 b, int sh) {
-  const bool neg = (a < 0) != (b < 0);
-  bool over = false;
-  const auto m = fx::detail::round_shr(
-      fx::detail::mul_u64(fx::detail::magnitude(a), fx::detail::magnitude(b)), sh, over);
-  const i64 r = static_cast<i64>(m);
-  return neg ? -r : r;
-}
+constexpr i64 mul_shr(i64 a, i64 b, int sh) { return fx::mul_shift_right(a, b, sh); }
 
 // round(2^98 / p) for 0 < p < 2^62, by restoring long division (the remainder stays < p).
 constexpr i64 recip_q98(std::uint64_t p) {
@@ -158,6 +151,13 @@ constexpr i64 seed_value(const CosnCoeffs& c, i64 theta, i64 s, int piece) {
 
 }  // namespace fd_detail
 
+// For callers that seed f themselves at a single angle (the Kuijk-Blake methods' per-pixel and
+// per-sample values): piece_of(θ, a, b) is the piece of f holding θ (0 and 4 zero, 1 and 3
+// outer parabolas, 2 the inner one), and seed_value(c, θ, s, piece) is s·f(θ) in the state
+// format (kStateFrac): the same bits as the forward-differenced sections at θ.
+using fd_detail::piece_of;
+using fd_detail::seed_value;
+
 constexpr CosnCoeffs make_coeffs(CosnParams p) {
   CosnCoeffs c;
   c.a = p.a.raw();
@@ -223,7 +223,7 @@ constexpr QuadState jump(const CosnSegment& prev, const CosnSegment& next) {
 
 // Q.44 state value -> output intensity (1.0 = 2^16), rounded to nearest.
 constexpr std::int32_t to_out(std::int64_t v) {
-  return static_cast<std::int32_t>(fx::detail::round_shift_right(v, kStateFrac - kOutFrac));
+  return static_cast<std::int32_t>(fx::round_shift_right(v, kStateFrac - kOutFrac));
 }
 
 }  // namespace tp::fw::cosn

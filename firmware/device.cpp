@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "firmware/raster.hpp"
+#include "fixedpoint/cordic.hpp"
 
 namespace tp::fw {
 namespace {
@@ -257,10 +258,9 @@ Error Device::set_material(const MaterialCmd& cmd) {
   if (!in_unit_interval(cmd.ka) || !in_unit_interval(cmd.kd) || !in_unit_interval(cmd.ks))
     return fail(Error::kOutOfRange);
   if (cmd.n < 1 || cmd.n > kMaxExponent) return fail(Error::kOutOfRange);
-  // (a, b): both unset (0), or 0 <= a < b <= pi/2 (pi/2 = 843314857 / 2^29, rounded).
-  constexpr std::int32_t half_pi = 843314857;
+  // (a, b): both unset (0), or 0 <= a < b <= π/2 (rounded to the angle format).
   const bool unset = cmd.a.raw() == 0 && cmd.b.raw() == 0;
-  if (!unset && !(cmd.a.raw() >= 0 && cmd.a < cmd.b && cmd.b.raw() <= half_pi))
+  if (!unset && !(cmd.a.raw() >= 0 && cmd.a < cmd.b && cmd.b <= fx::half_pi()))
     return fail(Error::kOutOfRange);
   state_.shading.material = cmd;
   return ok();

@@ -5,13 +5,13 @@
 #include "fixedpoint/arith.hpp"
 #include "firmware/vecmath.hpp"
 #include "fixedpoint/vec3.hpp"
+#include "fixedpoint/wide.hpp"
 
 namespace tp::fw {
 namespace {
 
-using fx::detail::round_shift_right;
+using fx::round_shift_right;
 using wide = std::int64_t;
-using I62 = fx::Q<62, 0, std::int64_t>;
 
 bool fits_q15_16(wide raw) { return raw >= q15_16::min_raw && raw <= q15_16::max_raw; }
 
@@ -42,7 +42,7 @@ std::int32_t lerp_raw(std::int32_t a, std::int32_t b, q1_30 t) {
 
 // The point where edge in -> out crosses plane p: t = d_in / (d_in - d_out) in [0, 1).
 ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, wide d_in, wide d_out) {
-  const q1_30 t = fx::div<q1_30>(I62::from_raw(d_in), I62::from_raw(d_in - d_out));
+  const q1_30 t = fx::div<q1_30>(fx::int_q::from_raw(d_in), fx::int_q::from_raw(d_in - d_out));
   ClipVertex r;
   for (int k = 0; k < 4; ++k) r.clip[k] = lerp_raw(in.clip[k], out.clip[k], t);
   const auto lerp_q = [&](auto a, auto b) {
@@ -70,27 +70,6 @@ int clip_against(int plane, const ClipVertex* in, int n, ClipVertex* out) {
   return m;
 }
 
-// Two's-complement 128-bit accumulator for homogeneous_orientation (no __int128 on Cortex-M).
-struct S128 {
-  std::uint64_t lo = 0;
-  std::uint64_t hi = 0;  // two's complement high word
-  void add_product(wide a, wide b) {
-    const bool neg = (a < 0) != (b < 0);
-    fx::detail::U128 p = fx::detail::mul_u64(fx::detail::magnitude(a), fx::detail::magnitude(b));
-    if (neg) {  // -p = ~p + 1
-      p.lo = ~p.lo + 1;
-      p.hi = ~p.hi + (p.lo == 0 ? 1u : 0u);
-    }
-    const std::uint64_t lo2 = lo + p.lo;
-    hi += p.hi + (lo2 < lo ? 1u : 0u);
-    lo = lo2;
-  }
-  int sign() const {
-    if ((hi >> 63) != 0) return -1;
-    return (hi | lo) != 0 ? 1 : 0;
-  }
-};
-
 }  // namespace
 
 int homogeneous_orientation(const ClipVertex v[3]) {
@@ -99,7 +78,7 @@ int homogeneous_orientation(const ClipVertex v[3]) {
   const auto minor = [&](int c0, int c1, int i, int j) {
     return wide{v[i].clip[c0]} * v[j].clip[c1] - wide{v[j].clip[c0]} * v[i].clip[c1];
   };
-  S128 det;
+  fx::Sum128 det;
   det.add_product(v[0].clip[0], minor(1, 3, 1, 2));
   det.add_product(-wide{v[0].clip[1]}, minor(0, 3, 1, 2));
   det.add_product(v[0].clip[3], minor(0, 1, 1, 2));
@@ -160,9 +139,9 @@ ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height
   // |x|, |y| <= 3 w (guard band), w < 2^31: numerators below 4 * 2^31 * 8 * 4096 = 2^48.
   ShadeVertex s;
   s.sx = static_cast<std::int32_t>(
-      fx::div<I62>(I62::from_raw((x + w) * 8 * width), I62::from_raw(w)).raw());
+      fx::div<fx::int_q>(fx::int_q::from_raw((x + w) * 8 * width), fx::int_q::from_raw(w)).raw());
   s.sy = static_cast<std::int32_t>(
-      fx::div<I62>(I62::from_raw((w - y) * 8 * height), I62::from_raw(w)).raw());
+      fx::div<fx::int_q>(fx::int_q::from_raw((w - y) * 8 * height), fx::int_q::from_raw(w)).raw());
   // NDC z with 30 fraction bits, saturated to [-2, 2): beyond the far plane depth is clamped.
   s.z = fx::div<fx::Q<1, 30, std::int64_t>>(q15_16::from_raw(v.clip[2]), q15_16::from_raw(v.clip[3]))
             .raw();

@@ -1,5 +1,5 @@
 // Interpolation helpers shared by the methods: screen-linear planes (what the 1980s methods
-// assume, DESIGN §5) and perspective-correct (hyperbolic) barycentrics (what the double
+// assume, docs/CONVENTIONS.md) and perspective-correct (hyperbolic) barycentrics (what the double
 // reference uses). Both are exact-integer at their core: the edge functions are exact, and each
 // result is rounded once.
 #pragma once
@@ -11,8 +11,6 @@
 #include "fixedpoint/arith.hpp"
 
 namespace tp::fw {
-
-using I62 = fx::Q<62, 0, std::int64_t>;  // a plain 64-bit integer as a Q, for fx::div
 
 // Shift that brings a non-negative magnitude below 2^bits.
 constexpr int shift_to_fit(std::uint64_t mag, int bits) {
@@ -56,14 +54,14 @@ class ScreenPlane {
     // dv/dpx = (d1 (y2 - y0) + d2 (y0 - y1)) / area2, times 16 subpixels per pixel.
     const std::int64_t num = d1_ * (std::int64_t{t.v[2].sy} - t.v[0].sy) +
                              d2_ * (std::int64_t{t.v[0].sy} - t.v[1].sy);
-    step_ = fx::div<Step>(fx::Q<62, 0, std::int64_t>::from_raw(num),
+    step_ = fx::div<Step>(fx::int_q::from_raw(num),
                           fx::Q<58, 4, std::int64_t>::from_raw(t.area2))
                 .raw();
   }
   std::int64_t at(const Lambdas& lam) const {
     const std::int64_t l1 = clamp27(lam.l[1] >> shift_), l2 = clamp27(lam.l[2] >> shift_);
     const std::int64_t num = l1 * d1_ + l2 * d2_;
-    return v0_ + fx::div<I62>(I62::from_raw(num), I62::from_raw(area_)).raw();
+    return v0_ + fx::div<fx::int_q>(fx::int_q::from_raw(num), fx::int_q::from_raw(area_)).raw();
   }
   std::int64_t step_x() const { return step_; }
 
@@ -101,7 +99,7 @@ class PerspectiveBary {
       b[1] = b[2] = q1_30::zero();
       return;
     }
-    for (int i = 0; i < 3; ++i) b[i] = fx::div<q1_30>(I62::from_raw(mu[i]), I62::from_raw(sum));
+    for (int i = 0; i < 3; ++i) b[i] = fx::div<q1_30>(fx::int_q::from_raw(mu[i]), fx::int_q::from_raw(sum));
   }
 
  private:

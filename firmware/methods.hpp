@@ -1,4 +1,4 @@
-// The shading methods implemented so far (DESIGN §6, methods 1-3), one unit each. Each states
+// The shading methods implemented so far (docs/CONVENTIONS.md, "Methods"), one unit each. Each states
 // what it handles exactly: all three take point lights, a finite eye and up to kMaxLights
 // lights with the exact Blinn-Phong formula; they differ in where the formula is evaluated.
 #pragma once

@@ -40,8 +40,8 @@ class EdgeWalker {
   EdgePos pos(std::int32_t yc, EdgeParameters edges) const {
     if (edges == EdgeParameters::kWithout) return EdgePos{from_, to_, q1_30::zero()};
     // t = (yc - ay) / dy in [0, 1): the row centre lies on the edge's half-open y range.
-    const auto t = fx::div<q1_30>(fx::Q<62, 0, std::int64_t>::from_raw(std::int64_t{yc} - ay_),
-                                  fx::Q<62, 0, std::int64_t>::from_raw(dy_));
+    const auto t = fx::div<q1_30>(fx::int_q::from_raw(std::int64_t{yc} - ay_),
+                                  fx::int_q::from_raw(dy_));
     return EdgePos{from_, to_, t};
   }
 
@@ -50,10 +50,6 @@ class EdgeWalker {
   std::int32_t ay_ = 0;
   std::uint8_t from_ = 0, to_ = 0;
 };
-
-constexpr std::int64_t clamp64(std::int64_t v, std::int64_t lo, std::int64_t hi) {
-  return v < lo ? lo : (v > hi ? hi : v);
-}
 
 }  // namespace
 
@@ -68,9 +64,9 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
 
   // Rows whose centre yc satisfies ytop <= yc < ybot, inside the viewport.
   const std::int32_t row0 =
-      static_cast<std::int32_t>(clamp64(first_centre_at_or_after(y(top)), 0, height));
+      static_cast<std::int32_t>(fx::clamp(first_centre_at_or_after(y(top)), 0, height));
   const std::int32_t row1 =
-      static_cast<std::int32_t>(clamp64(first_centre_at_or_after(y(bot)), 0, height));
+      static_cast<std::int32_t>(fx::clamp(first_centre_at_or_after(y(bot)), 0, height));
   if (row0 >= row1) return 0;
 
   // Is the middle vertex left of the long edge top->bot? Then the long edge bounds spans on
@@ -101,8 +97,8 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
     }
     const EdgeWalker& l = long_is_right ? short_edge : long_edge;
     const EdgeWalker& r = long_is_right ? long_edge : short_edge;
-    const std::int64_t x0 = clamp64(l.ix(), 0, width);
-    const std::int64_t x1 = clamp64(r.ix(), 0, width);
+    const std::int64_t x0 = fx::clamp(l.ix(), 0, width);
+    const std::int64_t x1 = fx::clamp(r.ix(), 0, width);
     if (x0 < x1) {
       target.span(Span{row, static_cast<std::int32_t>(x0), static_cast<std::int32_t>(x1),
                        l.pos(yc, edges), r.pos(yc, edges)});

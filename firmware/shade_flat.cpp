@@ -8,7 +8,7 @@ bool FlatMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   const auto mean = [&](auto get) {
     const std::int64_t sum = std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
     return q15_16::from_raw(static_cast<std::int32_t>(
-        fx::div<I62>(I62::from_raw(sum), I62::from_raw(3)).raw()));
+        fx::div<fx::int_q>(fx::int_q::from_raw(sum), fx::int_q::from_raw(3)).raw()));
   };
   const Vec3q16 p{mean([](const ShadeVertex& v) { return v.eye.x; }),
                   mean([](const ShadeVertex& v) { return v.eye.y; }),

@@ -7,7 +7,7 @@ bool GouraudMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   std::int64_t c[3][3];  // [vertex][channel], clamped to [0, 1] in Q.30
   for (int i = 0; i < 3; ++i) {
     const Radiance r = blinn_phong(ctx, tri.v[i].eye, tri.v[i].normal);
-    for (int ch = 0; ch < 3; ++ch) c[i][ch] = r.c[ch] < 0 ? 0 : (r.c[ch] > one ? one : r.c[ch]);
+    for (int ch = 0; ch < 3; ++ch) c[i][ch] = fx::clamp(r.c[ch], 0, one);
   }
   for (int ch = 0; ch < 3; ++ch) plane_[ch].setup(tri, c[0][ch], c[1][ch], c[2][ch]);
   tri_ = &tri;

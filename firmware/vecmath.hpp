@@ -19,7 +19,7 @@ inline Vec3u normalize_wide(std::int64_t x, std::int64_t y, std::int64_t z) {
   const int w = static_cast<int>(std::bit_width(mag(x) | mag(y) | mag(z)));
   const int s = w > 29 ? w - 29 : 0;
   const auto cut = [s](std::int64_t v) {
-    return q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(v, s)));
+    return q1_30::from_raw(static_cast<std::int32_t>(fx::round_shift_right(v, s)));
   };
   return fx::normalize<q1_30>(Vec3u{cut(x), cut(y), cut(z)});
 }

@@ -41,6 +41,14 @@ struct Polar {
   angle_t angle;
 };
 
+// π and π/2 in angle_t, and 2π in angle_t's raw units (2π is beyond angle_t's range; sums of
+// angles are wrapped with it), each rounded from the generated table's π in Q60.
+constexpr angle_t pi() { return angle_t::from_raw(tables::pi_q2_29); }
+constexpr angle_t half_pi() {
+  return angle_t::from_raw(static_cast<std::int32_t>(round_shift_right(tables::pi_q60, 32)));
+}
+constexpr std::int64_t two_pi_raw() { return round_shift_right(tables::pi_q60, 30); }
+
 namespace detail {
 
 inline constexpr int kCordicIterations = 40;
@@ -182,28 +190,32 @@ constexpr SinCos sin_cos_fast(angle_t theta) {
   wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
   detail::rotation_steps<false>(x, y, z, detail::kFastIterations);
   // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
-  const wide_t z30 = detail::round_shift_right(z, 30);      // |.| < 2^23
+  const wide_t z30 = round_shift_right(z, 30);      // |.| < 2^23
   const wide_t z2_60 = z30 * z30;                            // < 2^46
   const wide_t z2_30 = z2_60 >> 30;                          // < 2^16
   const wide_t e60 = z2_60 / 2 - (z2_30 * z2_30) / 24;       // 1 − cos z, < 2^45
   const wide_t s60 = z - (z2_30 * z30) / 6;                  // sin z, |.| < 2^53
   // x·e: Q32 × Q45 -> Q77 (< 2^62); y·s: Q31 × Q38 -> Q69 (< 2^62).
-  const wide_t e45 = e60 >> 15, s38 = detail::round_shift_right(s60, 22);
-  const wide_t x32 = detail::round_shift_right(x, 28), y32 = detail::round_shift_right(y, 28);
-  const wide_t x31 = detail::round_shift_right(x, 29), y31 = detail::round_shift_right(y, 29);
-  wide_t xr = x - detail::round_shift_right(x32 * e45, 17) - detail::round_shift_right(y31 * s38, 9);
-  wide_t yr = y - detail::round_shift_right(y32 * e45, 17) + detail::round_shift_right(x31 * s38, 9);
+  const wide_t e45 = e60 >> 15, s38 = round_shift_right(s60, 22);
+  const wide_t x32 = round_shift_right(x, 28), y32 = round_shift_right(y, 28);
+  const wide_t x31 = round_shift_right(x, 29), y31 = round_shift_right(y, 29);
+  wide_t xr = x - round_shift_right(x32 * e45, 17) - round_shift_right(y31 * s38, 9);
+  wide_t yr = y - round_shift_right(y32 * e45, 17) + round_shift_right(x31 * s38, 9);
   if (flip) {
     xr = -xr;
     yr = -yr;
   }
-  return SinCos{q1_30::from_raw_sat(detail::round_shift_right(yr, 30)),
-                q1_30::from_raw_sat(detail::round_shift_right(xr, 30))};
+  return SinCos{q1_30::from_raw_sat(round_shift_right(yr, 30)),
+                q1_30::from_raw_sat(round_shift_right(xr, 30))};
 }
 
 template <QType T>
 constexpr angle_t atan2_fast(T y, T x) {
   return detail::angle_from_q60(detail::cordic_vectoring_fast(y.raw(), x.raw()));
+}
+// The same for two integers of any common scale, |y|, |x| <= 2^62.
+constexpr angle_t atan2_fast(std::int64_t y, std::int64_t x) {
+  return detail::angle_from_q60(detail::cordic_vectoring_fast(y, x));
 }
 
 constexpr SinCos sin_cos(angle_t theta) {
@@ -216,8 +228,8 @@ constexpr SinCos sin_cos(angle_t theta) {
     x = -x;
     y = -y;
   }
-  return SinCos{q1_30::from_raw_sat(detail::round_shift_right(y, 30)),
-                q1_30::from_raw_sat(detail::round_shift_right(x, 30))};
+  return SinCos{q1_30::from_raw_sat(round_shift_right(y, 30)),
+                q1_30::from_raw_sat(round_shift_right(x, 30))};
 }
 
 template <QType T>
@@ -238,7 +250,7 @@ constexpr Polar<T> to_polar(T x, T y) {
 
 constexpr angle_t acos_unit(q1_30 c) {
   constexpr detail::wide_t one = detail::wide_t{1} << 30;
-  const detail::wide_t cr = detail::clamp(c.raw(), -one, one);
+  const detail::wide_t cr = clamp(c.raw(), -one, one);
   // sin = sqrt(1 - c^2), exactly rounded in Q58: radicand (2^60 - c^2) is Q60, times 2^56.
   const auto radicand = static_cast<detail::u64>((one * one) - cr * cr);
   const detail::RootResult s = detail::isqrt_shifted(radicand, 56, detail::u64{1} << 59);

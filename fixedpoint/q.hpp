@@ -20,6 +20,24 @@
 
 namespace tp::fx {
 
+// Raw-integer vocabulary, for code that works on raw values between Q types (the rounding and
+// saturation every Q operation below is built from):
+//   round_shift_right(v, s)  v / 2^s rounded to nearest, ties away from zero (the rounding of
+//                            convert and mul_sat); exact for |v| < 2^62.
+//   clamp(v, lo, hi)         v limited to [lo, hi] (lo <= hi).
+
+// For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
+// shift: v >> 63 supplies the −1 without a branch on the sign.
+constexpr std::int64_t round_shift_right(std::int64_t v, int shift) {
+  if (shift <= 0) return v;
+  const std::int64_t half = std::int64_t{1} << (shift - 1);
+  return (v + half + (v >> 63)) >> shift;
+}
+
+constexpr std::int64_t clamp(std::int64_t v, std::int64_t lo, std::int64_t hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
 namespace detail {
 
 // The widest integer a 32-bit target has natively; all intermediate results fit in it.
@@ -28,17 +46,7 @@ using wide_t = std::int64_t;
 template <class S>
 constexpr int storage_bits = std::numeric_limits<S>::digits;  // excludes the sign bit
 
-// Round-to-nearest right shift, ties away from zero. Exact for every input of wide_t whose
-// magnitude is below 2^62 (the bias cannot overflow); callers stay far inside that.
-constexpr wide_t round_shift_right(wide_t v, int shift) {
-  if (shift <= 0) return v;
-  // For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
-  // shift: v >> 63 supplies the −1 without a branch on the sign.
-  const wide_t half = wide_t{1} << (shift - 1);
-  return (v + half + (v >> 63)) >> shift;
-}
-
-constexpr wide_t clamp(wide_t v, wide_t lo, wide_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
+using tp::fx::round_shift_right;  // MERGE-TEMP: old spelling, until every caller uses fx::
 
 }  // namespace detail
 
@@ -64,7 +72,7 @@ class Q {
   static constexpr Q from_raw(Storage raw) { return Q(raw); }
   // Saturating construction from any integer raw value (e.g. a wide intermediate).
   static constexpr Q from_raw_sat(detail::wide_t raw) {
-    return Q(static_cast<Storage>(detail::clamp(raw, min_raw, max_raw)));
+    return Q(static_cast<Storage>(clamp(raw, min_raw, max_raw)));
   }
   // Integer value; saturates when it does not fit the declared range.
   static constexpr Q from_int(detail::wide_t v) {
@@ -176,5 +184,7 @@ using q1_14 = Q<1, 14, std::int16_t>;   // unit-vector components at 16-bit prec
 using q1_30 = Q<1, 30, std::int32_t>;   // unit-vector components at 32-bit precision
 using q15_16 = Q<15, 16, std::int32_t>; // general coordinates
 using q2_29 = Q<2, 29, std::int32_t>;   // angles in radians, |θ| <= 4 > π
+// A plain 64-bit integer as a Q (no fraction bits), so that integers enter div and mul_sat.
+using int_q = Q<62, 0, std::int64_t>;
 
 }  // namespace tp::fx

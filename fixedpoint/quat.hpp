@@ -157,8 +157,8 @@ constexpr Quat<To> rotation_between_with(Vec3<T> from, Vec3<T> to, int antipodal
                                   detail::abs_wide(t[i]) > kRawLimit;
   if (big) {
     for (int i = 0; i < 3; ++i) {
-      f[i] = detail::round_shift_right(f[i], 1);
-      t[i] = detail::round_shift_right(t[i], 1);
+      f[i] = round_shift_right(f[i], 1);
+      t[i] = round_shift_right(t[i], 1);
     }
     --frac;
   }

@@ -132,6 +132,9 @@ constexpr RsqrtResult rsqrt_core(u64 u, int frac) {
 
 }  // namespace detail
 
+// ⌊√u⌋ of an integer (the raw-integer root, for code between Q types).
+constexpr std::uint64_t isqrt_floor(std::uint64_t u) { return detail::isqrt_plain(u, ~std::uint64_t{0}).root; }
+
 template <QType To, QType From>
 constexpr To sqrt(From x) {
   static_assert(To::int_bits + To::frac_bits <= 60, "digit-by-digit root needs 4 spare bits");

@@ -116,3 +116,40 @@ constexpr SignMag exact_sum(const wide_t* terms, int count) {
 }
 
 }  // namespace tp::fx::detail
+
+namespace tp::fx {
+
+// Raw-integer products wider than 64 bits, public for code between Q types:
+//   mul_shift_right(a, b, s)  round(a·b / 2^s), ties away from zero, from the exact 128-bit
+//                             product; the caller keeps the result below 2^63.
+//   Sum128                    an exact signed sum of 64×64-bit products (its sign only: what
+//                             orientation tests need), without __int128 (Cortex-M has none).
+constexpr std::int64_t mul_shift_right(std::int64_t a, std::int64_t b, int s) {
+  const bool negative = (a < 0) != (b < 0);
+  bool over = false;
+  const auto m = static_cast<std::int64_t>(
+      detail::round_shr(detail::mul_u64(detail::magnitude(a), detail::magnitude(b)), s, over));
+  return negative ? -m : m;
+}
+
+struct Sum128 {
+  std::uint64_t lo = 0;
+  std::uint64_t hi = 0;  // two's complement high word
+  constexpr void add_product(std::int64_t a, std::int64_t b) {
+    const bool negative = (a < 0) != (b < 0);
+    detail::U128 p = detail::mul_u64(detail::magnitude(a), detail::magnitude(b));
+    if (negative) {  // −p = ~p + 1
+      p.lo = ~p.lo + 1;
+      p.hi = ~p.hi + (p.lo == 0 ? 1u : 0u);
+    }
+    const std::uint64_t lo2 = lo + p.lo;
+    hi += p.hi + (lo2 < lo ? 1u : 0u);
+    lo = lo2;
+  }
+  constexpr int sign() const {
+    if ((hi >> 63) != 0) return -1;
+    return (hi | lo) != 0 ? 1 : 0;
+  }
+};
+
+}  // namespace tp::fx

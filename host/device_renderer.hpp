@@ -70,7 +70,7 @@ class DeviceRenderer {
   // Renders with the scene's objects rotated by `model_rotation_radians` about the world y axis
   // (the lights stay put, so the highlights move: the server's animation).
   DeviceFrame render(double model_rotation_radians = 0.0);
-  // The double-precision reference of the same frame (DESIGN §9).
+  // The double-precision reference of the same frame (host/reference.hpp).
   ReferenceFrame render_reference(double model_rotation_radians = 0.0,
                                   Interpolation interpolation = Interpolation::Phong) const;
 

@@ -1,4 +1,4 @@
-// Sphere-like test meshes of the papers (DESIGN §9), the single triangle, OBJ loading.
+// Sphere-like test meshes of the papers (scenes/README.md, "Meshes"), the single triangle, OBJ loading.
 #include "host/meshes.hpp"
 
 #include <cmath>

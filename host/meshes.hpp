@@ -1,4 +1,4 @@
-// Triangle meshes of the desktop side: the papers' test objects (DESIGN §9), built by
+// Triangle meshes of the desktop side: the papers' test objects (scenes/README.md), built by
 // generators, and OBJ files read with tinyobjloader. Model space; y is up.
 #pragma once
 
@@ -30,7 +30,7 @@ class MeshError : public std::runtime_error {
 };
 
 // Regular octahedron, each face split into 4^subdivisions, vertices pushed onto the unit
-// sphere, normal = position: 8·4^s triangles (s = 1: 32, s = 3: 512; DESIGN §9).
+// sphere, normal = position: 8·4^s triangles (s = 1: 32, s = 3: 512; scenes/README.md).
 Mesh octa_sphere(int subdivisions);
 // UV sphere: `slices` around y, `stacks` from pole to pole; fans at the poles, so
 // 2·slices·(stacks − 1) triangles (5 × 5: 40, Vlasic's sphere).

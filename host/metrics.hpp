@@ -1,4 +1,4 @@
-// Error measures between a reference image and an evaluated one (DESIGN §9, Vlasic ch. 6).
+// Error measures between a reference image and an evaluated one (Vlasic's thesis, ch. 6: colour correctness, eq. 6.1; docs/RESULTS.md).
 // All are taken over the pixels covered in both images; background pixels are excluded.
 #pragma once
 

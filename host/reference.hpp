@@ -1,11 +1,11 @@
-// The double-precision reference renderer (DESIGN §9): same camera, clipping, snapping and
+// The double-precision reference renderer (docs/CONVENTIONS.md, "Shared contract"): same camera, clipping, snapping and
 // coverage as the device (docs/CONVENTIONS.md), exact per-pixel Blinn-Phong.
 //
 // Two interpolation schemes for the normal:
 //  - Phong: N, and the eye-space position P, interpolated perspective-correctly (hyperbolic
 //    barycentrics from the snapped screen vertices), N renormalised per pixel; true per-pixel
 //    L = normalize(light − P) and V = normalize(−P) (V = (0, 0, 1) for an orthographic eye).
-//  - Angular: N by slerp, the way the Kuijk-Blake device interpolates directions (DESIGN §7).
+//  - Angular: N by slerp, the way the Kuijk-Blake device interpolates directions (docs/KUIJK-BLAKE.md).
 //    Precisely: for the pixel centre (x, y), take the scanline through y; where it crosses the
 //    triangle's edges, N_edge = slerp(N_a, N_b, t) with t = (y − y_a)/(y_b − y_a) the
 //    screen-linear fraction along the edge (a, b its snapped screen vertices); of the crossings
@@ -67,7 +67,7 @@ ReferenceImage render_reference(const FrameSetup& frame, const std::vector<DrawM
 ReferenceImage render_reference(const Scene& scene, Interpolation interp = Interpolation::Phong,
                                 int width = 0, int height = 0);
 
-// Blinn-Phong at one eye-space point with unit normal N (conventions.md, DESIGN §6):
+// Blinn-Phong at one eye-space point with unit normal N (docs/CONVENTIONS.md, "Shared contract"):
 // I_c = ka·O_c + Σ Il_c·[kd·O_c·max(0, N·L) + ks·max(0, N·H)^n], unclamped.
 glm::dvec3 blinn_phong(const glm::dvec3& n, const glm::dvec3& p, const FrameSetup& frame);
 

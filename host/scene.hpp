@@ -34,7 +34,7 @@ class SceneError : public std::runtime_error {
   std::string problem_;
 };
 
-inline constexpr int kMaxLights = 16;  // the device has 16 light slots (DESIGN §4)
+inline constexpr int kMaxLights = 16;  // the device has 16 light slots (docs/CONVENTIONS.md, "Limits")
 
 enum class CameraKind { Orthographic, Perspective };
 

@@ -1,5 +1,5 @@
 // tinyphong: the command-line tool. Renders scenes with the emulated device, renders the double
-// reference, and compares images (DESIGN §9's measures).
+// reference, and compares images (Vlasic's measures, docs/RESULTS.md).
 //
 //   tinyphong render scenes/teapot.json --method gouraud -o teapot.png
 //   tinyphong reference scenes/teapot.json -o ref.png [--exr ref.exr] [--angular]

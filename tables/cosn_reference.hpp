@@ -10,7 +10,7 @@
 
 namespace tp::tables::cosn {
 
-// Kuijk-Blake section 2 with the labels corrected (DESIGN §8): a < b, the inner parabola on
+// Kuijk-Blake section 2 with the labels corrected (docs/ACCURACY.md, "Lookup-free cos^n"): a < b, the inner parabola on
 // |θ| <= a, the outer one up to b, zero beyond. Continuous in value and slope at ±a and ±b.
 inline double f_quad(double theta, double a, double b) {
   const double t = std::fabs(theta);
@@ -98,7 +98,7 @@ inline double sampled_max_error(const Sampled& s, double a, double b) {
   return worst;
 }
 
-// The paper's closed forms with the labels corrected (DESIGN §8), in double.
+// The paper's closed forms with the labels corrected (docs/ACCURACY.md), in double.
 inline double paper_a(double n) { return (n + 5.6) / (n * (0.09 * n + 5.2)); }
 inline double paper_b(double n) { return (n + 65.0) / (5.0 * n + 31.7); }
 

@@ -160,7 +160,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   std::int64_t area_recip_ = 0;
   std::int64_t local_of(std::int64_t num) const {
     const std::int64_t area = tri_->area2;
-    num = num < -area ? -area : (num > 2 * area ? 2 * area : num);
+    num = fx::clamp(num, -area, 2 * area);
     return (num * area_recip_ + (std::int64_t{1} << 29)) >> 30;
   }
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.

@@ -2,6 +2,7 @@
 // highlight guard (peak_level) and the terminators (find_terminators). Both bound the normal
 // and the light or halfway direction over a cell by the caps of their values at its vertices.
 #include "firmware/kb/kb_adaptive.hpp"
+#include "fixedpoint/sqrt.hpp"
 
 namespace tp::fw::kb {
 namespace {
@@ -109,7 +110,7 @@ int KbAdaptiveMethod::peak_level(const Cell& c, std::uint32_t& peaks) {
   if (omega_n_ != m.n) {
     // ω = 0.6 / √n in Q.30: 0.6·2^45 / (√n·2^15).
     omega_n_ = m.n;
-    const auto root = fx::detail::isqrt_plain(std::uint64_t{m.n} << 30, std::uint64_t{1} << 40).root;
+    const std::uint64_t root = fx::isqrt_floor(std::uint64_t{m.n} << 30);
     omega_ = static_cast<std::int64_t>(21110623253299ULL / (root == 0 ? 1 : root));
   }
   PointShader::Point pt[3];

@@ -1,4 +1,4 @@
-// Span-setup coherence between consecutive spans (DESIGN §7, issue 4 item 6).
+// Span-setup coherence between consecutive spans (docs/KUIJK-BLAKE.md, "How it works").
 //
 // The exact span setup of the one-vector method (two slerps, the great circle, s, φ, dφ, f(s):
 // three CORDIC atan2, two sin_cos, a sqrt, an rsqrt and two divisions per term) costs far more
@@ -59,7 +59,7 @@ struct QuadY {
     v += d1;
     d1 += d2;
   }
-  std::int64_t value() const { return fx::detail::round_shift_right(v, kExtra); }
+  std::int64_t value() const { return fx::round_shift_right(v, kExtra); }
 
   static std::int64_t div_round(std::int64_t n, std::int64_t d) {
     return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);

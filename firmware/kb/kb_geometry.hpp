@@ -48,10 +48,9 @@ using dangle_t = fx::Q<3, 40, std::int64_t>;
 
 inline constexpr Unit kO{q1_30::zero(), q1_30::zero(), q1_30::one()};  // Kuijk-Blake's O
 
-// π in angle_t, rounded (raw = round(π · 2^29)).
-inline constexpr angle_t kPi = angle_t::from_raw(1686629713);
-inline constexpr angle_t kHalfPi = angle_t::from_raw(843314857);
-inline constexpr std::int64_t kTwoPiRaw = 3373259426;  // round(2π · 2^29)
+inline constexpr angle_t kPi = fx::pi();
+inline constexpr angle_t kHalfPi = fx::half_pi();
+inline constexpr std::int64_t kTwoPiRaw = fx::two_pi_raw();
 
 // An angle in raw angle_t units (any value a sum of a few angles can take) wrapped into
 // [−π, π].
@@ -129,7 +128,7 @@ constexpr ExactPole exact_pole(const Unit& a, const Unit& b) {
 constexpr Unit scaled_pole(const ExactPole& e) {
   const int shift = e.width - 30;
   const auto cut = [shift](std::int64_t v) {
-    return q1_30::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(v, shift)));
+    return q1_30::from_raw(static_cast<std::int32_t>(fx::round_shift_right(v, shift)));
   };
   return {cut(e.p[0]), cut(e.p[1]), cut(e.p[2])};
 }
@@ -137,9 +136,8 @@ constexpr Unit scaled_pole(const ExactPole& e) {
 constexpr angle_t pole_angle(const ExactPole& e, q1_30 pn_len, q1_30 cos_t) {
   const int shift = e.width - 30;
   const std::int64_t s = pn_len.raw(), c = cos_t.raw();
-  return fx::detail::angle_from_q60(
-      shift >= 30 ? fx::detail::cordic_vectoring_fast(s * (std::int64_t{1} << (shift - 30)), c)
-                  : fx::detail::cordic_vectoring_fast(s, c * (std::int64_t{1} << (30 - shift))));
+  return shift >= 30 ? fx::atan2_fast(s * (std::int64_t{1} << (shift - 30)), c)
+                     : fx::atan2_fast(s, c * (std::int64_t{1} << (30 - shift)));
 }
 
 constexpr Arc make_arc(const Unit& from, const Unit& to) {
@@ -155,7 +153,7 @@ constexpr Arc make_arc(const Unit& from, const Unit& to) {
     const Unit tu = fx::cross<q1_30>(pn, from);
     const std::int64_t inv = (std::int64_t{1} << 61) / pn_len.raw();  // 1/|Pn| in Q.31, < 2^32
     const auto one = [inv](q1_30 v) {
-      return q1_30::from_raw_sat(fx::detail::round_shift_right(std::int64_t{v.raw()} * inv, 31));
+      return q1_30::from_raw_sat(fx::round_shift_right(std::int64_t{v.raw()} * inv, 31));
     };
     arc.tangent = Unit{one(tu.x), one(tu.y), one(tu.z)};
     arc.angle = pole_angle(pole, pn_len, c);
@@ -266,7 +264,7 @@ constexpr SpanCircle span_circle(const Unit& vl, const Unit& vr, const Unit& o =
     // φ_L = atan2(V_L·Q', V_L·O) with Q' = P × O = (Pn × O)/|Pn|: both sides times |Pn|, in Q.60.
     const std::int64_t num = fx::dot<W>(vl, q).raw();
     const std::int64_t den = std::int64_t{fx::dot<q1_30>(vl, o).raw()} * pn_len.raw();
-    c.phi_left = fx::detail::angle_from_q60(fx::detail::cordic_vectoring_fast(num, den));
+    c.phi_left = fx::atan2_fast(num, den);
     c.theta = pole_angle(pole, pn_len, fx::dot<q1_30>(vl, vr));
     return c;
   }

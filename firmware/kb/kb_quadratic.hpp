@@ -103,7 +103,6 @@ struct SteppedQuadratic {
 };
 
 inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, std::int64_t dv) {
-  using cosn::fd_detail::mul_shr;
   constexpr std::int64_t kTwo = std::int64_t{2} << 30;
   du = du > kTwo ? kTwo : (du < -kTwo ? -kTwo : du);
   dv = dv > kTwo ? kTwo : (dv < -kTwo ? -kTwo : dv);
@@ -114,10 +113,10 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
   const std::int64_t du2 = du * du, dv2 = dv * dv, dudv = du * dv;  // Q.60, <= 2^62
   constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;   // Q.14 × Q.60 -> Q.40
   constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;  // Q.14 × Q.30 -> Q.40
-  const std::int64_t curve = mul_shr(q.cuu, du2, kFromSq) + mul_shr(q.cvv, dv2, kFromSq) +
-                             mul_shr(q.cuv, dudv, kFromSq);
+  const std::int64_t curve = fx::mul_shift_right(q.cuu, du2, kFromSq) + fx::mul_shift_right(q.cvv, dv2, kFromSq) +
+                             fx::mul_shift_right(q.cuv, dudv, kFromSq);
   s.d2 = 2 * curve;
-  s.e0 = mul_shr(q.cu, du, kFromLin) + mul_shr(q.cv, dv, kFromLin) + curve;
+  s.e0 = fx::mul_shift_right(q.cu, du, kFromLin) + fx::mul_shift_right(q.cv, dv, kFromLin) + curve;
   s.eu = 2 * q.cuu * du + q.cuv * dv;  // Q.44
   s.ev = 2 * q.cvv * dv + q.cuv * du;
   return s;
@@ -128,7 +127,7 @@ struct Monomials {
   std::int64_t u = 0, v = 0, uu = 0, vv = 0, uv = 0;  // Q.30
 };
 inline Monomials monomials(std::int64_t u, std::int64_t v) {
-  const auto sq30 = [](std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); };
+  const auto sq30 = [](std::int64_t a, std::int64_t b) { return fx::round_shift_right(a * b, 30); };
   return Monomials{u, v, sq30(u, u), sq30(v, v), sq30(u, v)};
 }
 
@@ -137,7 +136,7 @@ inline std::int64_t value_at(const LocalQuadratic& q, const Monomials& m) {
   constexpr int kToState = kQuadStateFrac - kSampleFrac;    // 26
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   return q.c0 * (std::int64_t{1} << kToState) +
-         fx::detail::round_shift_right(q.cu * m.u + q.cv * m.v + q.cuu * m.uu + q.cvv * m.vv + q.cuv * m.uv,
+         fx::round_shift_right(q.cu * m.u + q.cv * m.v + q.cuu * m.uu + q.cvv * m.vv + q.cuv * m.uv,
                                        kProd);
 }
 
@@ -160,7 +159,6 @@ inline QuadStep seed_short(const SteppedQuadratic& s, const Monomials& at, const
 
 // The state at local (u, v) (Q.30) of a piece of n pixels.
 inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, std::int32_t n) {
-  using cosn::fd_detail::mul_shr;
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   const Monomials at = monomials(u, v);
   if (n <= 1) return seed_short(s, at, nullptr);  // (its steps may point far outside the cell)
@@ -170,7 +168,7 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
   }
   QuadStep st;
   st.v = value_at(s.q, at);
-  st.d1 = s.e0 + mul_shr(s.eu, u, kProd + 30) + mul_shr(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
+  st.d1 = s.e0 + fx::mul_shift_right(s.eu, u, kProd + 30) + fx::mul_shift_right(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
   st.d2 = s.d2;
   return st;
 }

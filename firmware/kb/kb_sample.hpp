@@ -22,14 +22,14 @@ namespace tp::fw::kb {
 // value as fx::dot<q1_30> (the exact sum, |.| < 3·2^60, fits 64 bits; no saturation is possible),
 // without its general 128-bit-safe path. Samples take several per light.
 inline std::int64_t dot_unit(const Vec3u& a, const Vec3u& b) {
-  return fx::detail::round_shift_right(std::int64_t{a.x.raw()} * b.x.raw() + std::int64_t{a.y.raw()} * b.y.raw() +
+  return fx::round_shift_right(std::int64_t{a.x.raw()} * b.x.raw() + std::int64_t{a.y.raw()} * b.y.raw() +
                                            std::int64_t{a.z.raw()} * b.z.raw(),
                                        30);
 }
 
 // a·b in Q1.30 of a in [0, 2) and b in (−2, 2) (Q1.30), rounded half away from zero: fx::mul_sat's
 // value where no saturation can occur (|a·b| < 2 here: material weights and cosines).
-inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::detail::round_shift_right(a * b, 30); }
+inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::round_shift_right(a * b, 30); }
 
 // A vector cut by `cut` bits to at most 30 bits per component (rounding half up: only its
 // direction matters) and the reciprocal root of its squared length; a zero vector keeps
@@ -55,12 +55,12 @@ inline std::int64_t over_length(std::int64_t x, const CutVector& v) {
 // The cosine between a and b, a·b / (|a||b|), in Q1.30 (0 if either is zero).
 inline std::int64_t cosine(const CutVector& a, const CutVector& b) {
   const std::int64_t dot = a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];  // |.| <= 3·2^60
-  return over_length(over_length(fx::detail::round_shift_right(dot, 30), a), b);
+  return over_length(over_length(fx::round_shift_right(dot, 30), a), b);
 }
 // The cosine between a and the unit vector u (Q1.30).
 inline std::int64_t cosine(const CutVector& a, const Vec3u& u) {
   const std::int64_t dot = a.c[0] * u.x.raw() + a.c[1] * u.y.raw() + a.c[2] * u.z.raw();
-  return over_length(fx::detail::round_shift_right(dot, 30), a);
+  return over_length(fx::round_shift_right(dot, 30), a);
 }
 
 class PointShader {
@@ -119,8 +119,8 @@ class PointShader {
         const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};
         const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
         for (int j = 0; j < 3; ++j) {
-          weighted_normal_[i][j] = fx::detail::round_shift_right(r_[i] * n[j], scale);
-          weighted_eye_[i][j] = fx::detail::round_shift_right(r_[i] * e[j], scale);
+          weighted_normal_[i][j] = fx::round_shift_right(r_[i] * n[j], scale);
+          weighted_eye_[i][j] = fx::round_shift_right(r_[i] * e[j], scale);
           max_normal |= mag(weighted_normal_[i][j]);
           max_eye |= mag(weighted_eye_[i][j]);
         }
@@ -311,7 +311,7 @@ class PointShader {
         const Vec3u lv = light_direction(pt, li);
         const std::int64_t dot_l = dot_unit(pt.normal, lv);
         const bool open = ((unclamped >> li) & 1u) != 0;
-        if (open) out[k++] = static_cast<std::int32_t>(fx::detail::round_shift_right(dot_l, 6));
+        if (open) out[k++] = static_cast<std::int32_t>(fx::round_shift_right(dot_l, 6));
         const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
         const std::int64_t ndh = normal_halfway(pt, li, lv, dot_l);
         add_light(li, ndl, ndh, acc);
@@ -347,7 +347,7 @@ class PointShader {
     const LightState& l = *light_[li];
     for (int c = 0; c < 3; ++c) {
       const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
-      acc[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+      acc[c] += fx::round_shift_right(term * l.color[c].raw(), 16);
     }
   }
 
@@ -414,8 +414,8 @@ class PointShader {
   // is saturated either way, and kb-adaptive keeps its terminators above −1785 levels.
   static std::int32_t level_of(std::int64_t i_q30) {
     constexpr std::int64_t lo = -(std::int64_t{8} << 30), hi = std::int64_t{8} << 30;
-    const std::int64_t v = i_q30 < lo ? lo : (i_q30 > hi ? hi : i_q30);
-    return static_cast<std::int32_t>(fx::detail::round_shift_right(v * 255, 30 - kFrac));
+    const std::int64_t v = fx::clamp(i_q30, lo, hi);
+    return static_cast<std::int32_t>(fx::round_shift_right(v * 255, 30 - kFrac));
   }
 
   // level_of(i) rounded half up to an integer and clamped to [0, 255]: 0 for i <= 0 (a level

@@ -1,4 +1,4 @@
-// Summed quadratic sections (Kuijk-Blake section 2, last paragraphs; DESIGN §7): every term
+// Summed quadratic sections (Kuijk-Blake section 2, last paragraphs; docs/KUIJK-BLAKE.md): every term
 // (a light's diffuse or specular f along the span, times its per-channel weight) is a
 // piecewise quadratic in x with break points where φ crosses ±a, ±b. Their sum is again
 // piecewise quadratic with the union of the break points, so the whole span is ONE
@@ -45,8 +45,8 @@ constexpr std::uint8_t level_of(std::int64_t v) {
 // One term's pieces on the span, per channel (the break points do not depend on the scale, so
 // the three channels share x and piece).
 inline constexpr int kMaxTermSegments = 2 * cosn::kMaxSegments;
-inline constexpr std::int64_t kPiRaw = 1686629713;       // round(π · 2^29)
-inline constexpr std::int64_t kTwoPiRawS = 3373259426;   // round(2π · 2^29)
+inline constexpr std::int64_t kPiRaw = fx::pi().raw();
+inline constexpr std::int64_t kTwoPiRawS = fx::two_pi_raw();
 
 struct TermSegments {
   cosn::CosnSegment seg[3][kMaxTermSegments];

@@ -408,8 +408,8 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   de1_ = step.l[1];
   de2_ = step.l[2];
   // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
-  du_ = fx::div<local_t>(I62::from_raw(de1_), I62::from_raw(tri.area2)).raw();
-  dv_ = fx::div<local_t>(I62::from_raw(de2_), I62::from_raw(tri.area2)).raw();
+  du_ = fx::div<local_t>(fx::int_q::from_raw(de1_), fx::int_q::from_raw(tri.area2)).raw();
+  dv_ = fx::div<local_t>(fx::int_q::from_raw(de2_), fx::int_q::from_raw(tri.area2)).raw();
   area_recip_ = (std::int64_t{1} << 60) / tri.area2;
 
   // A triangle of fewer than 64 pixels is cheaper evaluated exactly at every pixel than sampled

@@ -223,8 +223,7 @@ EdgePos KbOneVectorMethod::edge_at_row(const EdgePos& like, std::int32_t row) co
   EdgePos e = like;
   const std::int64_t from = tri_->v[like.from].sy, to = tri_->v[like.to].sy;
   const std::int64_t yc = 16 * std::int64_t{row} + 8;
-  using I = fx::Q<62, 0, std::int64_t>;
-  e.t = fx::div<q1_30>(I::from_raw(yc - from), I::from_raw(to > from ? to - from : 1));
+  e.t = fx::div<q1_30>(fx::int_q::from_raw(yc - from), fx::int_q::from_raw(to > from ? to - from : 1));
   if (e.t.raw() < 0) e.t = q1_30::zero();
   if (e.t > q1_30::one()) e.t = q1_30::one();
   return e;
@@ -285,7 +284,7 @@ void KbOneVectorMethod::add_span_term(const OneVectorTerm& t, std::int64_t phi_f
   cosn::scale_t scale[3];
   bool zero = true;
   for (int c = 0; c < 3; ++c) {
-    const std::int64_t q = scales[c] < 0 ? 0 : (scales[c] > q1_30::max_raw ? q1_30::max_raw : scales[c]);
+    const std::int64_t q = fx::clamp(scales[c], 0, q1_30::max_raw);
     scale[c] = q1_30::from_raw(static_cast<std::int32_t>(q));
     zero = zero && q == 0;
   }
@@ -293,7 +292,7 @@ void KbOneVectorMethod::add_span_term(const OneVectorTerm& t, std::int64_t phi_f
     ++counters_->lights_skipped_span;
     return;
   }
-  const angle_t dphi = angle_t::from_raw_sat(fx::detail::round_shift_right(rate, 11));
+  const angle_t dphi = angle_t::from_raw_sat(fx::round_shift_right(rate, 11));
   const std::int64_t phi0 = wrap_pi(phi_first);
   if (skipping_) {
     // φ beyond ±b on one side over the whole span (and not wrapping round past ±π): every
@@ -357,7 +356,7 @@ void KbOneVectorMethod::prepare_span(const Span& s) {
   for (int j = 0; j < terms_; ++j) {
     const std::int64_t rate = quad_[j][1].value();
     const std::int64_t scales[3] = {quad_[j][2].value(), quad_[j][3].value(), quad_[j][4].value()};
-    add_span_term(term_[j], quad_[j][0].value() + cosn::fd_detail::mul_shr(dx, rate, 27), rate,
+    add_span_term(term_[j], quad_[j][0].value() + fx::mul_shift_right(dx, rate, 27), rate,
                   scales, s);
     for (QuadY& q : quad_[j]) q.step();  // forward difference to the next row
   }

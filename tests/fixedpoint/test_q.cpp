@@ -4,7 +4,10 @@
 
 #include <cstdint>
 
+#include "fixedpoint/cordic.hpp"
 #include "fixedpoint/q.hpp"
+#include "fixedpoint/sqrt.hpp"
+#include "fixedpoint/wide.hpp"
 #include "tests/fixedpoint/input_sets.hpp"
 
 namespace fx = tp::fx;
@@ -92,4 +95,34 @@ TEST(Q, FromRatioAndConstants) {
   EXPECT_EQ(q7_8::from_ratio(-1, 512).raw(), -1);
   EXPECT_EQ(fx::q1_30::from_int(2), fx::q1_30::max());  // 2 is outside [-2, 2)
   EXPECT_EQ(fx::q1_30::from_int(-2).raw(), INT32_MIN);
+}
+
+// The public raw-integer vocabulary (fixedpoint/q.hpp, wide.hpp, sqrt.hpp, cordic.hpp).
+TEST(Q, RawVocabulary) {
+  EXPECT_EQ(fx::round_shift_right(5, 1), 3);    // 2.5 -> 3
+  EXPECT_EQ(fx::round_shift_right(-5, 1), -3);  // -2.5 -> -3: ties away from zero
+  EXPECT_EQ(fx::round_shift_right(-4, 1), -2);
+  EXPECT_EQ(fx::round_shift_right(7, 0), 7);
+  EXPECT_EQ(fx::clamp(-3, 0, 10), 0);
+  EXPECT_EQ(fx::clamp(11, 0, 10), 10);
+  EXPECT_EQ(fx::clamp(4, 0, 10), 4);
+  // 3·2^61 · 3 / 2^62 = 4.5 -> 5, and its negative -> -5; beyond 64 bits in between.
+  EXPECT_EQ(fx::mul_shift_right(std::int64_t{3} << 61, 3, 62), 5);
+  EXPECT_EQ(fx::mul_shift_right(-(std::int64_t{3} << 61), 3, 62), -5);
+  EXPECT_EQ(fx::isqrt_floor(0), 0u);
+  EXPECT_EQ(fx::isqrt_floor(99), 9u);
+  EXPECT_EQ(fx::isqrt_floor(100), 10u);
+  EXPECT_EQ(fx::isqrt_floor(~std::uint64_t{0}), 0xffffffffu);
+  fx::Sum128 s;
+  s.add_product(INT64_MAX, INT64_MAX);  // 2^126 − 2^64 + 1
+  s.add_product(-INT64_MAX, INT64_MAX);
+  EXPECT_EQ(s.sign(), 0);
+  s.add_product(-1, 1);
+  EXPECT_EQ(s.sign(), -1);
+  // π, π/2 and 2π in the angle format: round(π·2^29) and its half and double, rounded.
+  EXPECT_EQ(fx::pi().raw(), 1686629713);
+  EXPECT_EQ(fx::half_pi().raw(), 843314857);
+  EXPECT_EQ(fx::two_pi_raw(), 3373259426);
+  EXPECT_EQ(fx::atan2_fast(std::int64_t{1} << 40, std::int64_t{1} << 40).raw(),
+            fx::atan2_fast(fx::q1_30::one(), fx::q1_30::one()).raw());  // any common scale
 }

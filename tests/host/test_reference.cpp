@@ -216,7 +216,7 @@ TEST(Angular, EqualsPhongWhenNormalsAreEqual) {
 TEST(Angular, DiffersFromPhongOnACoarseSphereButNotMuch) {
   // sphere-32 scene setup at 256×256. Measured colour correctness (eq. 6.1) of Angular vs
   // Phong 0.99782, max 5 levels (printed by this test); pinned at > 0.98 (the schemes differ
-  // visibly on 32 triangles, by far less than Gouraud's 0.94 of DESIGN §9).
+  // visibly on 32 triangles, by far less than Gouraud's 0.94 in docs/RESULTS.md).
   FrameSetup f = ortho_frame(256, 256, 1.25);
   f.lights = {{LightKind::Point, 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5)), {1, 1, 1}}};
   const Mesh s = octa_sphere(1);

@@ -1,4 +1,4 @@
-// Scene files: every shipped scene loads with the DESIGN §9 parameters; every malformed
+// Scene files: every shipped scene loads with the parameters of scenes/README.md; every malformed
 // fixture in data/ fails with a SceneError naming file, line, JSON path and problem.
 #include <gtest/gtest.h>
 
@@ -142,7 +142,7 @@ TEST(Matrices, OrthographicIsIdentityViewAndEyeLightsAreWorldLights) {
   const auto lights = eye_lights(s);
   ASSERT_EQ(lights.size(), 1u);
   EXPECT_EQ(lights[0].kind, LightKind::Point);
-  // DESIGN §9: 4·normalize(1, 1.2, 1.5), written with 6 decimals in the file.
+  // scenes/README.md: 4·normalize(1, 1.2, 1.5), written with 6 decimals in the file.
   const glm::dvec3 want = 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5));
   EXPECT_NEAR(glm::length(lights[0].vector - want), 0, 1e-6);
   EXPECT_TRUE(eye_at_infinity(s.camera));

@@ -1,6 +1,6 @@
 // Span geometry of the Kuijk-Blake method (firmware/kb/kb_geometry.hpp) against the double
 // model (kb_model.hpp): equal-angle arcs, the span's great circle (s, φ_L, θ), φ along the
-// pixels, and the degenerate cases the paper lists (DESIGN §7).
+// pixels, and the degenerate cases the paper lists (docs/KUIJK-BLAKE.md, "Degenerate cases").
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Every device method against the double-precision reference on every paper scene (DESIGN §9).
+// Every device method against the double-precision reference on every paper scene (docs/RESULTS.md).
 //
 // The bounds are measured, then pinned with a margin, so that a regression in any method shows.
 // Origin of every number below: the release build of
