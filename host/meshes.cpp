@@ -1,10 +1,14 @@
 // Sphere-like test meshes of the papers (scenes/README.md, "Meshes"), the single triangle, OBJ loading.
 #include "host/meshes.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <set>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include <tiny_obj_loader.h>
@@ -142,12 +146,46 @@ void compute_normals(Mesh& m) {
   for (auto& n : m.normals) n = glm::length(n) > 0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
 }
 
+namespace {
+
+// tinyobjloader reads a token that is not a number ("nan", "inf", "1e999", "x") as 0 or as
+// infinity without a word, so the numbers of every vertex record are read here first: each
+// must be a finite double. The error names the file, the line and the field.
+void check_obj_numbers(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  static constexpr const char* kFields[] = {"x", "y", "z", "w"};
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF files
+    std::istringstream words(line);
+    std::string record;
+    words >> record;
+    if (record != "v" && record != "vn" && record != "vt") continue;
+    std::string token;
+    for (int k = 0; words >> token; ++k) {
+      if (token[0] == '#') break;
+      double value = 0;
+      const char* begin = token.data() + (token[0] == '+' ? 1 : 0);  // from_chars takes no '+'
+      const char* end = token.data() + token.size();
+      const auto [ptr, ec] = std::from_chars(begin, end, value);
+      if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
+        const std::string field = k < 4 ? kFields[k] : "value " + std::to_string(k + 1);
+        throw MeshError("malformed OBJ " + file.string() + ":" + std::to_string(number) + ": " + record +
+                        " " + field + " '" + token.substr(0, 32) + "' is not a finite number");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Mesh load_obj(const std::filesystem::path& file) {
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = true;
   cfg.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!std::filesystem::is_regular_file(file)) throw MeshError("mesh file not found: " + file.string());
+  check_obj_numbers(file);
   if (!reader.ParseFromFile(file.string(), cfg))
     throw MeshError("malformed OBJ " + file.string() + ": " + reader.Error());
   const auto& attrib = reader.GetAttrib();

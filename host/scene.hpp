@@ -35,6 +35,9 @@ class SceneError : public std::runtime_error {
 };
 
 inline constexpr int kMaxLights = 16;  // the device has 16 light slots (docs/CONVENTIONS.md, "Limits")
+// JSON nesting a scene file may use (scenes need 5 levels): deeper files are refused before
+// they are parsed, because the JSON library recurses per level.
+inline constexpr int kMaxSceneNesting = 64;
 
 enum class CameraKind { Orthographic, Perspective };
 

@@ -144,6 +144,26 @@ TEST(Obj, ComputesMissingNormalsAndRejectsBadFiles) {
   EXPECT_THROW(load_obj(data + "/nothing_here.obj"), MeshError);
 }
 
+TEST(Obj, NonFiniteNumbersNameFileLineAndField) {
+  // tinyobjloader alone read "nan" as 0 and rendered the mesh without a word.
+  const std::string data = TP_HOST_TEST_DATA;
+  const std::pair<const char*, const char*> cases[] = {
+      {"/nan_vertex.obj", "nan_vertex.obj:3: v x 'nan' is not a finite number"},
+      {"/inf_normal.obj", "inf_normal.obj:6: vn z 'inf' is not a finite number"},
+      {"/huge_vertex.obj", "huge_vertex.obj:4: v y '1e999' is not a finite number"},
+  };
+  // What the check must not refuse: CRLF line ends, a leading '+', a trailing comment.
+  EXPECT_EQ(load_obj(data + "/crlf_plus.obj").triangles.size(), 1u);
+  for (const auto& [file, message] : cases) {
+    try {
+      load_obj(data + file);
+      ADD_FAILURE() << file << " loaded";
+    } catch (const MeshError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Obj, NormalsFromGeometryWhenAbsent) {
   Mesh m = octa_sphere(1);
   compute_normals(m);

@@ -76,6 +76,30 @@ TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
   EXPECT_TRUE(parse || range) << e.what();
 }
 
+TEST(SceneParse, DeepNestingIsRefusedBeforeParsing) {
+  // 100,000 nested arrays (200 KB) crashed the JSON library's recursive value tree; refused
+  // with the line of the first bracket past the limit. Brackets inside strings do not count.
+  const std::string deep = "{\n\"name\": \"[[[[\",\n\"x\": " + std::string(100000, '[') +
+                           std::string(100000, ']') + "}";
+  try {
+    parse_scene(deep, "deep.json", ".");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), "deep.json");
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(e.problem().find("nested deeper than 64"), std::string::npos) << e.what();
+  }
+  // At the limit itself the nesting is no error of its own (the scene reader then refuses
+  // what it does not know).
+  const std::string at_limit = "{\"x\": " + std::string(63, '[') + std::string(63, ']') + "}";
+  try {
+    parse_scene(at_limit, "limit.json", ".");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.problem().find("nested deeper"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneParse, MissingFileIsAnError) {
   const SceneError e = load_error(kData / "no_such_scene.json");
   EXPECT_NE(e.problem().find("cannot open"), std::string::npos);
