@@ -3,19 +3,25 @@
 // frames. A message that fails either step gets an error reply naming the problem and changes
 // nothing.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <variant>
 
+#include "firmware/types.hpp"
+#include "server/control_type.hpp"
 #include "server/frame_source.hpp"
+#include "server/result.hpp"
 
 namespace tp::server {
 
 inline constexpr std::size_t kControlMessageLimit = 4096;  // bytes; larger → error reply
-inline constexpr std::size_t kMaxLights = 16;  // the device's light slots (host::kMaxLights)
+// The viewer's own bounds, inside what the device accepts (fw::kMaxDimension, fw::kMaxExponent).
 inline constexpr int kMinSize = 16, kMaxSize = 2048;
+inline constexpr double kMaxExponentN = 1000;
+static_assert(kMaxSize <= static_cast<int>(fw::kMaxDimension));
+static_assert(kMaxExponentN <= fw::kMaxExponent);
 
 // Flags the render loop owns (not part of the scene).
 struct LoopFlags {
@@ -25,7 +31,7 @@ struct LoopFlags {
 };
 
 struct Command {
-  std::string type;  // the message's "type", echoed in replies
+  ControlType type = ControlType::unknown;  // never unknown once parsed
   // Which fields are present depends on type; the parser checks the combination.
   std::optional<std::string> text;  // method / scene name
   std::optional<double> n, a, b, ka, kd, ks;
@@ -43,9 +49,12 @@ struct ParseResult {
 
 ParseResult parse_control(const std::string& text);
 
-// Applies a validated command (not "ack"/"get_state") to the source and loop flags.
-// Returns "" on success or the problem (state untouched). step_requested is set by "step".
-std::string apply_control(const Command& c, FrameSource& src, LoopFlags& flags,
-                          bool& step_requested);
+// True for the types that only change the render loop's flags (LoopFlags, a step), not what a
+// frame looks like: after them the current image need not be rendered again.
+bool changes_loop_flags_only(ControlType t);
+
+// Applies a validated command (not ack/get_state) to the source and loop flags; on failure the
+// state is untouched. step_requested is set by step.
+Result apply_control(const Command& c, FrameSource& src, LoopFlags& flags, bool& step_requested);
 
 }  // namespace tp::server

@@ -4,6 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "firmware/types.hpp"
 #include "host/reference.hpp"
 
 namespace tp::server {
@@ -69,7 +70,7 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
   if (width > 0) sc.width = width;
   if (height > 0) sc.height = height;
   if (!method.empty()) sc.method = method;
-  if (auto e = install(std::move(sc), scene); !e.empty()) throw std::runtime_error(e);
+  if (Result r = install(std::move(sc), scene); !r.ok()) throw std::runtime_error(r.message());
 }
 
 std::vector<std::string> DeviceSource::methods() const {
@@ -78,33 +79,33 @@ std::vector<std::string> DeviceSource::methods() const {
   return out;
 }
 
-std::string DeviceSource::install(host::Scene sc, const std::string& name) {
+Result DeviceSource::install(host::Scene sc, const std::string& name) {
   try {
     host::method_from_name(sc.method);  // names the valid choices if not one
     renderer_.set_scene(sc);            // on failure the device keeps the previous scene
   } catch (const std::exception& e) {
-    return e.what();
+    return Result::failure(e.what());
   }
   settings_ = to_settings(sc, name);
   scene_ = std::make_shared<const host::Scene>(std::move(sc));
-  return "";
+  return Result::success();
 }
 
-std::string DeviceSource::apply(const ViewSettings& s) {
-  if (s.lights.size() > static_cast<std::size_t>(host::kMaxLights)) return "too many lights";
+Result DeviceSource::apply(const ViewSettings& s) {
+  if (s.lights.size() > fw::kMaxLights) return Result::failure("too many lights");  // the device's slots
   return install(with_settings(*scene_, s), s.scene);
 }
 
-std::string DeviceSource::load_scene(const std::string& name) {
+Result DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
-    return "unknown scene '" + name + "'";
+    return Result::failure("unknown scene '" + name + "'");
   try {
     // The viewer keeps the method it shows; the scene file's own "method" is for the CLI.
     host::Scene sc = host::load_scene(dir_ / (name + ".json"));
     sc.method = settings_.method;
     return install(std::move(sc), name);
   } catch (const std::exception& e) {
-    return e.what();
+    return Result::failure(e.what());
   }
 }
 

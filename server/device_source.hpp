@@ -17,15 +17,15 @@ class DeviceSource : public FrameSource {
   DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height,
                const std::string& method = "");
   const ViewSettings& settings() const override { return settings_; }
-  std::string apply(const ViewSettings& s) override;
-  std::string load_scene(const std::string& name) override;
+  Result apply(const ViewSettings& s) override;
+  Result load_scene(const std::string& name) override;
   std::vector<std::string> methods() const override;
   std::vector<std::string> scenes() const override { return scene_names_; }
   RenderedFrame render(double rotation_radians) override;
   std::function<Image()> reference_task(double rotation_radians) override;
 
  private:
-  std::string install(host::Scene scene, const std::string& name);  // "" or the problem
+  Result install(host::Scene scene, const std::string& name);
 
   std::filesystem::path dir_;
   std::vector<std::string> scene_names_;

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "server/result.hpp"
+
 namespace tp::server {
 
 struct LightSetting {
@@ -46,10 +48,10 @@ class FrameSource {
  public:
   virtual ~FrameSource() = default;
   virtual const ViewSettings& settings() const = 0;
-  // Applies the settings as a whole; returns "" or the problem (then nothing changed).
-  virtual std::string apply(const ViewSettings& s) = 0;
-  // Loads a shipped scene by name; returns "" or the problem (then nothing changed).
-  virtual std::string load_scene(const std::string& name) = 0;
+  // Applies the settings as a whole; on failure nothing changed.
+  virtual Result apply(const ViewSettings& s) = 0;
+  // Loads a shipped scene by name; on failure nothing changed.
+  virtual Result load_scene(const std::string& name) = 0;
   virtual std::vector<std::string> methods() const = 0;
   virtual std::vector<std::string> scenes() const = 0;
   virtual RenderedFrame render(double rotation_radians) = 0;

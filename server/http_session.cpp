@@ -2,6 +2,8 @@
 
 #include <boost/asio/dispatch.hpp>
 
+#include "server/fail.hpp"
+
 namespace tp::server {
 
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerContext& ctx)
@@ -21,7 +23,11 @@ void HttpSession::do_read() {
 }
 
 void HttpSession::on_read(beast::error_code ec, std::size_t) {
-  if (ec) {  // end of stream, timeout, or a malformed/oversized request: just close
+  if (ec) {  // end of stream, timeout, or a malformed/oversized request: close
+    // A kept-alive connection that times out before its next request starts is an orderly end
+    // (a browser keeps one open after loading the page), like end_of_stream.
+    const bool idle = ec == beast::error::timeout && !parser_->got_some();
+    if (!idle) fail(ec, "http read");
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
     return;
@@ -53,7 +59,10 @@ void HttpSession::send(Response res) {
 
 void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
   res_.reset();
-  if (ec) return;
+  if (ec) {
+    fail(ec, "http write");
+    return;
+  }
   if (close) {
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);

@@ -2,6 +2,8 @@
 
 #include <boost/asio/strand.hpp>
 
+#include "server/fail.hpp"
+
 namespace tp::server {
 
 Listener::Listener(net::io_context& ioc, net::ip::tcp::endpoint ep, ServerContext& ctx)
@@ -28,8 +30,11 @@ void Listener::do_accept() {
 }
 
 void Listener::on_accept(beast::error_code ec, net::ip::tcp::socket socket) {
-  if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
-  if (!ec) std::make_shared<HttpSession>(std::move(socket), ctx_)->run();
+  if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;  // stop()
+  if (ec)
+    fail(ec, "accept");  // e.g. out of file descriptors: keep accepting, as Beast's examples do
+  else
+    std::make_shared<HttpSession>(std::move(socket), ctx_)->run();
   do_accept();
 }
 

@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
       auto s = p->settings();
       if (width) s.width = width;
       if (height) s.height = height;
-      p->apply(s);
+      // Only a method it does not know is refused, and this is its own default.
+      if (auto r = p->apply(s); !r.ok()) throw std::runtime_error(r.message());
       src = std::move(p);
     }
     tp::server::Server server(opt, std::move(src));

@@ -15,16 +15,16 @@ PatternSource::PatternSource() {
 std::vector<std::string> PatternSource::methods() const { return {"gradient", "rings", "flat"}; }
 std::vector<std::string> PatternSource::scenes() const { return {"pattern"}; }
 
-std::string PatternSource::apply(const ViewSettings& s) {
+Result PatternSource::apply(const ViewSettings& s) {
   const auto m = methods();
-  if (std::find(m.begin(), m.end(), s.method) == m.end()) return "unknown method '" + s.method + "'";
+  if (std::find(m.begin(), m.end(), s.method) == m.end()) return Result::failure("unknown method '" + s.method + "'");
   s_ = s;
-  return "";
+  return Result::success();
 }
 
-std::string PatternSource::load_scene(const std::string& name) {
-  if (name != "pattern") return "unknown scene '" + name + "'";
-  return "";
+Result PatternSource::load_scene(const std::string& name) {
+  if (name != "pattern") return Result::failure("unknown scene '" + name + "'");
+  return Result::success();
 }
 
 Image render_pattern(const ViewSettings& s, double rotation, int bias) {

@@ -9,8 +9,8 @@ class PatternSource : public FrameSource {
  public:
   PatternSource();
   const ViewSettings& settings() const override { return s_; }
-  std::string apply(const ViewSettings& s) override;
-  std::string load_scene(const std::string& name) override;
+  Result apply(const ViewSettings& s) override;
+  Result load_scene(const std::string& name) override;
   std::vector<std::string> methods() const override;
   std::vector<std::string> scenes() const override;
   RenderedFrame render(double rotation_radians) override;

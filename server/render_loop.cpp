@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
+#include <numbers>
 
 #include <nlohmann/json.hpp>
+
+#include "host/metrics.hpp"
 
 namespace tp::server {
 
@@ -14,26 +16,23 @@ using nlohmann::json;
 
 ErrorStats compare_images(const Image& d, const Image& r) {
   ErrorStats e;
-  if (d.width != r.width || d.height != r.height) return e;
   const std::size_t n = static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height);
-  double sum = 0, sq = 0;
-  int mx = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!d.covered[i] || !r.covered[i]) continue;  // conventions: covered in both only
-    ++e.pixels;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const int diff = std::abs(int(d.rgb[3 * i + c]) - int(r.rgb[3 * i + c]));
-      sum += diff;
-      sq += double(diff) * diff;
-      mx = std::max(mx, diff);
-    }
-  }
-  if (e.pixels == 0) return e;
-  const double cnt = 3.0 * double(e.pixels);
-  e.correctness = 1.0 - sum / (255.0 * cnt);  // Vlasic's colour correctness c
-  e.mean_levels = sum / cnt;
-  e.max_levels = mx;
-  e.psnr = sq == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / (sq / cnt));
+  // A reference computed after a resolution change can differ in size from its device frame.
+  if (d.width != r.width || d.height != r.height || d.rgb.size() != 3 * n || r.rgb.size() != 3 * n ||
+      d.covered.size() != n || r.covered.size() != n)
+    return e;
+  host::Image8 device(d.width, d.height), reference(r.width, r.height);
+  device.rgb = d.rgb;
+  reference.rgb = r.rgb;
+  const host::Comparison c = host::compare(reference, r.covered, device, d.covered);
+  if (c.covered_both == 0) return e;
+  e.pixels = static_cast<std::size_t>(c.covered_both);
+  e.correctness = c.color_correctness;
+  e.mean_levels = c.mean_abs;
+  e.max_levels = c.max_abs;
+  // PSNR as host::compare takes it, 10·log10(255²/MSE) with the MSE over the three channels;
+  // its +inf for identical images is sent as 99 (JSON has no infinity; the page always showed 99).
+  e.psnr = std::isinf(c.psnr_db) ? 99.0 : c.psnr_db;
   return e;
 }
 
@@ -71,14 +70,15 @@ void RenderLoop::stop() {
   if (ref_thread_.joinable()) ref_thread_.join();
 }
 
-std::string RenderLoop::submit(Command c, Done done) {
+Result RenderLoop::submit(Command c, Done done) {
   {
     std::lock_guard lk(m_);
-    if (jobs_.size() >= opt_.max_pending_commands) return "server busy: too many pending commands";
+    if (jobs_.size() >= opt_.max_pending_commands)
+      return Result::failure("server busy: too many pending commands");
     jobs_.push_back({std::move(c), std::move(done)});
   }
   cv_.notify_all();
-  return "";
+  return Result::success();
 }
 
 TextPtr RenderLoop::state_message() {
@@ -115,19 +115,18 @@ bool RenderLoop::apply_pending() {
   bool changed = false;
   for (auto& j : jobs) {
     const bool ref_before = flags_.reference;
-    std::string err = apply_control(j.cmd, *src_, flags_, step_);
+    const Result outcome = apply_control(j.cmd, *src_, flags_, step_);
     {
       std::lock_guard lk(m_);  // before the worker can see the job below
       reference_on_ = flags_.reference;
       if (!flags_.reference) error_.reset();
     }
-    if (err.empty()) {
+    if (outcome.ok()) {
       changed = true;
-      const auto& t = j.cmd.type;
-      if (t != "animate" && t != "pause" && t != "step" && t != "reference") dirty_ = true;
+      if (!changes_loop_flags_only(j.cmd.type)) dirty_ = true;
       if (flags_.reference && !ref_before) offer_reference();
     }
-    j.done(err);
+    j.done(outcome);
   }
   if (changed) publish_state();
   return changed;
@@ -183,7 +182,7 @@ void RenderLoop::run() {
     }
     if (animate) rotation_ += opt_.radians_per_second * dt;
     if (step_ && !animate) rotation_ += opt_.radians_per_second / 30.0;  // one 30 fps step
-    rotation_ = std::fmod(rotation_, 2 * 3.14159265358979323846);
+    rotation_ = std::fmod(rotation_, 2 * std::numbers::pi);
     step_ = false;
     dirty_ = false;
     const auto t0 = Clock::now();

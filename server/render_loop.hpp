@@ -25,11 +25,17 @@ struct LoopOptions {
   std::size_t max_pending_commands = 64;
 };
 
-// Vlasic's colour correctness and level errors over pixels covered in both images (DESIGN §9).
+// What the page shows of the device frame against the double reference (docs/SERVER.md, the
+// "stats" message): host::compare's measures over the pixels covered in both images — colour
+// correctness (Vlasic's thesis, chapter 6, eq. 6.1), level errors, PSNR — the same convention
+// as the desktop tools' figures in docs/RESULTS.md.
 struct ErrorStats {
   std::uint32_t frame_id = 0;
   std::size_t pixels = 0;
-  double correctness = 1, mean_levels = 0, max_levels = 0, psnr = 0;
+  double correctness = 1, mean_levels = 0, max_levels = 0;
+  // In dB. JSON has no infinity, so where host::compare gives +inf (identical images) the page
+  // gets 99; with no pixel covered in both (or images of different sizes) it gets 0.
+  double psnr = 0;
 };
 ErrorStats compare_images(const Image& device, const Image& reference);
 
@@ -39,8 +45,9 @@ class RenderLoop {
   ~RenderLoop();
   void start();
   void stop();
-  using Done = std::function<void(std::string error)>;
-  std::string submit(Command c, Done done);  // "" or why it was refused (queue full)
+  // done gets the outcome of applying the command, on the render-loop thread.
+  using Done = std::function<void(const Result& outcome)>;
+  Result submit(Command c, Done done);  // fails when the command queue is full
   TextPtr state_message();
   std::string stats_message(std::size_t clients);
 

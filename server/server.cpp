@@ -5,6 +5,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "server/fail.hpp"
 #include "server/listener.hpp"
 
 namespace tp::server {
@@ -45,7 +46,10 @@ struct Server::Impl {
     stats_timer.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(1.0 / opt.stats_hz)));
     stats_timer.async_wait([this](boost::system::error_code ec) {
-      if (ec) return;
+      if (ec) {
+        fail(ec, "stats timer");  // cancelled at shutdown: not reported
+        return;
+      }
       hub.broadcast_text(std::make_shared<const std::string>(loop.stats_message(hub.clients())), true);
       tick_stats();
     });
@@ -84,7 +88,11 @@ std::string Server::url() const {
 int Server::run() {
   Impl& m = *impl_;
   m.signals.async_wait([&m](boost::system::error_code ec, int) {
-    if (!ec) m.shutdown();
+    if (ec) {
+      fail(ec, "signals");
+      return;
+    }
+    m.shutdown();
   });
   m.listener->run();
   m.loop.start();

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "server/fail.hpp"
 #include "server/render_loop.hpp"
 
 namespace tp::server {
@@ -30,7 +31,10 @@ void WsSession::run(Request req) {
 }
 
 void WsSession::on_accept(beast::error_code ec) {
-  if (ec) return;
+  if (ec) {
+    fail(ec, "websocket accept");
+    return;
+  }
   open_ = true;
   arm_watchdog();
   hub_.join(shared_from_this());
@@ -43,13 +47,14 @@ void WsSession::do_read() {
 
 void WsSession::on_read(beast::error_code ec, std::size_t) {
   if (ec) {  // closed by the peer, too big (Beast already sent close 1009), or aborted
+    if (open_) fail(ec, "websocket read");  // not after our own abort()
     abort();
     return;
   }
   if (ws_.got_text()) {
     handle_text(beast::buffers_to_string(buffer_.data()));
   } else {
-    reply("", "binary messages are not accepted");
+    reply("", Result::failure("binary messages are not accepted"));
   }
   buffer_.consume(buffer_.size());
   do_read();
@@ -58,25 +63,26 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
 void WsSession::handle_text(const std::string& text) {
   ParseResult p = parse_control(text);
   if (!p.command) {
-    reply("", p.error);
+    reply("", Result::failure(p.error));
     return;
   }
   const Command& c = *p.command;
-  if (c.type == "ack") {
+  // ack and get_state are answered here, on the session's strand; the rest go to the render loop.
+  if (c.type == ControlType::ack) {
     handle_ack(c);
     return;
   }
-  if (c.type == "get_state") {
+  if (c.type == ControlType::get_state) {
     queue_text(loop_.state_message(), false);
     return;
   }
   std::weak_ptr<WsSession> weak = weak_from_this();
-  const std::string type = c.type;
-  auto done = [weak, type](std::string error) {
+  const ControlType type = c.type;
+  auto done = [weak, type](const Result& outcome) {
     if (auto self = weak.lock())
-      net::post(self->ws_.get_executor(), [self, type, error] { self->reply(type, error); });
+      net::post(self->ws_.get_executor(), [self, type, outcome] { self->reply(to_string(type), outcome); });
   };
-  if (auto busy = loop_.submit(c, std::move(done)); !busy.empty()) reply(type, busy);
+  if (Result busy = loop_.submit(c, std::move(done)); !busy.ok()) reply(to_string(type), busy);
 }
 
 void WsSession::handle_ack(const Command& c) {
@@ -88,12 +94,12 @@ void WsSession::handle_ack(const Command& c) {
       return;
     }
   }
-  reply("ack", "no frame " + std::to_string(c.ack_id) + " in flight");
+  reply(to_string(ControlType::ack), Result::failure("no frame " + std::to_string(c.ack_id) + " in flight"));
 }
 
-void WsSession::reply(const std::string& request, const std::string& error) {
-  nlohmann::json j = {{"type", error.empty() ? "ok" : "error"}, {"request", request}};
-  if (!error.empty()) j["error"] = error;
+void WsSession::reply(std::string_view request, const Result& outcome) {
+  nlohmann::json j = {{"type", outcome.ok() ? "ok" : "error"}, {"request", request}};
+  if (!outcome.ok()) j["error"] = outcome.message();
   queue_text(std::make_shared<const std::string>(j.dump()), false);
 }
 
@@ -161,6 +167,7 @@ void WsSession::on_write(beast::error_code ec, std::size_t) {
   writing_frame_.reset();
   writing_text_.reset();
   if (ec) {
+    if (open_) fail(ec, "websocket write");  // not after our own abort()
     abort();
     return;
   }
@@ -173,7 +180,11 @@ void WsSession::arm_watchdog() {
 }
 
 void WsSession::on_watchdog(beast::error_code ec) {
-  if (ec || !open_) return;
+  if (ec) {
+    fail(ec, "websocket watchdog");  // cancelled by abort(): operation_aborted, not reported
+    return;
+  }
+  if (!open_) return;
   const auto now = std::chrono::steady_clock::now();
   const bool write_stuck = writing_ && now - write_started_ > limits_.deadline;
   const bool acks_stopped = !in_flight_.empty() && now - in_flight_.front().sent > limits_.deadline;
@@ -191,7 +202,10 @@ void WsSession::close_going_away() {
     self->closing_ = true;
     self->closing_since_ = std::chrono::steady_clock::now();  // the close must finish in time too
     self->ws_.async_close(websocket::close_code::going_away,
-                          [self](beast::error_code) { self->abort(); });
+                          [self](beast::error_code ec) {
+                            fail(ec, "websocket close");
+                            self->abort();
+                          });
   });
 }
 

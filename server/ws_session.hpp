@@ -8,6 +8,7 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
@@ -48,7 +49,9 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void on_read(beast::error_code ec, std::size_t n);
   void handle_text(const std::string& text);
   void handle_ack(const Command& c);
-  void reply(const std::string& request, const std::string& error);
+  // {"type":"ok"|"error","request":request[,"error":…]}; request is "" when the message could
+  // not be parsed (its type is not known).
+  void reply(std::string_view request, const Result& outcome);
   void queue_text(TextPtr msg, bool droppable);
   void pump();
   void on_write(beast::error_code ec, std::size_t n);

@@ -98,14 +98,27 @@ TEST(Control, RejectsEachMalformedMessageByName) {
   EXPECT_NE(big.error.find("too large"), std::string::npos);
 }
 
+TEST(Control, TypeNamesRoundTrip) {
+  for (int i = static_cast<int>(ControlType::set_method); i <= static_cast<int>(ControlType::get_state); ++i) {
+    const auto t = static_cast<ControlType>(i);
+    EXPECT_EQ(string_to_control_type(to_string(t)), t) << to_string(t);
+  }
+  for (const char* s : {"", "unknown", "SET_METHOD", "set_method ", "ok", "error", "state"})
+    EXPECT_EQ(string_to_control_type(s), ControlType::unknown) << s;
+}
+
 TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   PatternSource src;
   LoopFlags flags;
   bool step = false;
-  auto run = [&](const char* msg) {
+  // "" for success, else the error reply's text.
+  auto run = [&](const char* msg) -> std::string {
     ParseResult r = parse_control(msg);
     EXPECT_TRUE(r.command.has_value()) << msg << ": " << r.error;
-    return r.command ? apply_control(*r.command, src, flags, step) : r.error;
+    if (!r.command) return r.error;
+    const Result applied = apply_control(*r.command, src, flags, step);
+    EXPECT_TRUE(applied.ok() || !applied.message().empty()) << msg << ": a failure must say why";
+    return applied.message();
   };
   EXPECT_EQ(run("{\"type\":\"set_method\",\"method\":\"rings\"}"), "");
   EXPECT_EQ(src.settings().method, "rings");
