@@ -136,6 +136,11 @@ class KbDecompositionMethod final : public ShadingMethod {
   void shade_span(const Span& s, Rgb8* out) override;
   bool reads_edge_positions() const override { return true; }
 
+  // The two halves of shade_span (as in KbOneVectorMethod): prepare_span builds each term's
+  // factor segments for the span, evaluate_span steps them.
+  void prepare_span(const Span& s);
+  void evaluate_span(const Span& s, Rgb8* out);
+
  private:
   struct Factor {  // one forward-differenced f along the span
     cosn::CosnSegment seg[kMaxTermSegments];
@@ -161,6 +166,11 @@ class KbExactMethod final : public ShadingMethod {
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
   bool reads_edge_positions() const override { return true; }
+
+  // The two halves of shade_span (as in KbOneVectorMethod): prepare_span sets up each term's
+  // angles and steps for the span, evaluate_span runs eq. 1 per pixel.
+  void prepare_span(const Span& s);
+  void evaluate_span(const Span& s, Rgb8* out);
 
  private:
   struct Term {
