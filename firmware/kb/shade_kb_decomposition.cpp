@@ -36,7 +36,7 @@ bool KbDecompositionMethod::setup(const Triangle& tri, const ShadeContext& ctx) 
 
 // Span setup: N's circle, then per term the angles u, v at the span ends (skipping the terms
 // that are zero over the whole span) and the forward-differenced segments of f(u) and f(v).
-void KbDecompositionMethod::prepare_span(const Span& s) {
+inline void KbDecompositionMethod::prepare_span(const Span& s) {
   const int length = s.x1 - s.x0;
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
   const xpos_t first = pixel_centre(s.x0);
@@ -76,7 +76,7 @@ void KbDecompositionMethod::prepare_span(const Span& s) {
 }
 
 // Pixel loop: per term f(u)·f(v) (eq. 2), weighted, both factors stepped.
-void KbDecompositionMethod::evaluate_span(const Span& s, Rgb8* out) {
+inline void KbDecompositionMethod::evaluate_span(const Span& s, Rgb8* out) {
   const int length = s.x1 - s.x0;
   std::int64_t acc[3];
   for (int x = 0; x < length; ++x) {

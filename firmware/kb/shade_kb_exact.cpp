@@ -32,7 +32,7 @@ bool KbExactMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 
 // Span setup: per term the two circles' intersection S, cos γ, and the angles n, l from S with
 // their per-pixel steps.
-void KbExactMethod::prepare_span(const Span& s) {
+inline void KbExactMethod::prepare_span(const Span& s) {
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
   const xpos_t first = pixel_centre(s.x0);
   const Unit nl = t_.n.at(s.left), nr = t_.n.at(s.right);
@@ -63,7 +63,7 @@ void KbExactMethod::prepare_span(const Span& s) {
 }
 
 // Pixel loop: per term two CORDIC rotations, eq. 1, max(0, cos α), cos^n α for specular.
-void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
+inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
   const int length = s.x1 - s.x0;
   for (int x = 0; x < length; ++x) {
     std::int64_t acc[3] = {t_.ambient[0], t_.ambient[1], t_.ambient[2]};
