@@ -9,14 +9,6 @@ namespace {
 q1_30 mul(q1_30 a, q1_30 b) { return fx::mul_sat<q1_30>(a, b); }
 q1_30 clamp_positive(q1_30 x) { return x.raw() < 0 ? q1_30::zero() : x; }
 
-// Unit vector toward the light from p (eye space).
-Vec3u light_direction(const LightState& l, const Vec3q16& p) {
-  if (l.type == LightType::kDirectional) return l.direction;
-  return normalize_wide(std::int64_t{l.position.x.raw()} - p.x.raw(),
-                        std::int64_t{l.position.y.raw()} - p.y.raw(),
-                        std::int64_t{l.position.z.raw()} - p.z.raw());
-}
-
 }  // namespace
 
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) {
@@ -30,19 +22,13 @@ Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) 
     diffuse_colour[c] = mul(m.kd, m.color[c]);
   }
   // V: toward the eye, at the origin (finite) or along +z (infinite).
-  Vec3u v{q1_30::zero(), q1_30::zero(), q1_30::one()};
-  if (ctx.eye == EyeMode::kFinite) {
-    v = normalize_wide(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
-                       -std::int64_t{p.z.raw()});
-    ++cnt.normalizations;
-  }
+  const Vec3u v = eye_direction(ctx, p);
+  if (ctx.eye == EyeMode::kFinite) ++cnt.normalizations;
   for (const LightState& l : ctx.lights) {
     if (l.type == LightType::kOff) continue;
     const Vec3u lv = light_direction(l, p);
     if (l.type == LightType::kPoint) ++cnt.normalizations;
-    const Vec3u h = normalize_wide(std::int64_t{lv.x.raw()} + v.x.raw(),
-                                   std::int64_t{lv.y.raw()} + v.y.raw(),
-                                   std::int64_t{lv.z.raw()} + v.z.raw());
+    const Vec3u h = halfway(lv, v);
     ++cnt.normalizations;
     const q1_30 ndl = clamp_positive(fx::dot<q1_30>(n, lv));
     const q1_30 ndh = clamp_positive(fx::dot<q1_30>(n, h));

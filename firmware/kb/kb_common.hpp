@@ -1,5 +1,6 @@
-// What the three Kuijk-Blake methods share: per-vertex directions (L, H, the eye vector),
-// per-term weights and (a, b), the triangle's edge arcs and the span ends' screen positions.
+// What the three Kuijk-Blake methods share: per-term weights and (a, b), the triangle's edge
+// arcs and the span ends' screen positions. The per-vertex directions (L, H, the eye vector)
+// are lighting.hpp's, the same copy as Blinn-Phong's.
 //
 // Terms: each light that is on gives two terms, diffuse (f with the (a, b) of n = 1, weight
 // Il_c·kd·O_c) and specular (f with the material's (a, b), weight Il_c·ks). Diffuse with
@@ -18,32 +19,12 @@
 #include "firmware/cosn_fd.hpp"
 #include "firmware/kb/kb_geometry.hpp"
 #include "firmware/kb/kb_sections.hpp"
+#include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
 #include "tables/cosn_fits.hpp"
 
 namespace tp::fw::kb {
-
-// Eye-direction at a vertex: toward the eye at the origin, or +z for an eye at infinity.
-inline Unit eye_direction(const ShadeContext& ctx, const Vec3q16& p) {
-  if (ctx.eye == EyeMode::kInfinite) return kO;
-  return normalize_wide(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
-                        -std::int64_t{p.z.raw()});
-}
-
-// Unit vector toward the light from p.
-inline Unit light_direction(const LightState& l, const Vec3q16& p) {
-  if (l.type == LightType::kDirectional) return l.direction;
-  return normalize_wide(std::int64_t{l.position.x.raw()} - p.x.raw(),
-                        std::int64_t{l.position.y.raw()} - p.y.raw(),
-                        std::int64_t{l.position.z.raw()} - p.z.raw());
-}
-
-// Blinn's halfway vector normalize(L + E).
-inline Unit halfway(const Unit& l, const Unit& e) {
-  return normalize_wide(std::int64_t{l.x.raw()} + e.x.raw(), std::int64_t{l.y.raw()} + e.y.raw(),
-                        std::int64_t{l.z.raw()} + e.z.raw());
-}
 
 // Il_c · k · O_c · 255/4096 in Q1.30 (the span value unit, kb_sections.hpp): Il_c <= 16 in
 // Q15.16 (raw < 2^21), k·O_c <= 1 in Q1.30: the product·255 stays below 2^59.

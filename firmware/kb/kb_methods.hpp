@@ -137,6 +137,10 @@ class KbDecompositionMethod final : public ShadingMethod {
   bool reads_edge_positions() const override { return true; }
 
  private:
+  // The two halves of shade_span (as in KbOneVectorMethod): prepare_span builds each term's
+  // factor segments for the span, evaluate_span steps them.
+  void prepare_span(const Span& s);
+  void evaluate_span(const Span& s, Rgb8* out);
   struct Factor {  // one forward-differenced f along the span
     cosn::CosnSegment seg[kMaxTermSegments];
     int count = 0, next = 0;
@@ -163,6 +167,10 @@ class KbExactMethod final : public ShadingMethod {
   bool reads_edge_positions() const override { return true; }
 
  private:
+  // The two halves of shade_span (as in KbOneVectorMethod): prepare_span sets up each term's
+  // angles and steps for the span, evaluate_span runs eq. 1 per pixel.
+  void prepare_span(const Span& s);
+  void evaluate_span(const Span& s, Rgb8* out);
   struct Term {
     std::int64_t n = 0, dn = 0, l = 0, dl = 0;  // angle_t raw, n/l wrapped to [−π, π]
     q1_30 cos_gamma{};

@@ -34,7 +34,9 @@ bool KbDecompositionMethod::setup(const Triangle& tri, const ShadeContext& ctx) 
   return true;
 }
 
-void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {
+// Span setup: N's circle, then per term the angles u, v at the span ends (skipping the terms
+// that are zero over the whole span) and the forward-differenced segments of f(u) and f(v).
+inline void KbDecompositionMethod::prepare_span(const Span& s) {
   const int length = s.x1 - s.x0;
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
   const xpos_t first = pixel_centre(s.x0);
@@ -71,6 +73,11 @@ void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {
       t.u.next = t.v.next = 0;
     }
   }
+}
+
+// Pixel loop: per term f(u)·f(v) (eq. 2), weighted, both factors stepped.
+inline void KbDecompositionMethod::evaluate_span(const Span& s, Rgb8* out) {
+  const int length = s.x1 - s.x0;
   std::int64_t acc[3];
   for (int x = 0; x < length; ++x) {
     for (int c = 0; c < 3; ++c) acc[c] = t_.ambient[c];
@@ -88,6 +95,11 @@ void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {
     out[x] = Rgb8{level_of(acc[0]), level_of(acc[1]), level_of(acc[2])};
   }
   t_.counters->specular_evaluations += terms_ > 0 ? static_cast<std::uint64_t>(length) : 0u;
+}
+
+void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {
+  prepare_span(s);
+  evaluate_span(s, out);
 }
 
 }  // namespace tp::fw::kb

@@ -30,8 +30,9 @@ bool KbExactMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   return true;
 }
 
-void KbExactMethod::shade_span(const Span& s, Rgb8* out) {
-  const int length = s.x1 - s.x0;
+// Span setup: per term the two circles' intersection S, cos γ, and the angles n, l from S with
+// their per-pixel steps.
+inline void KbExactMethod::prepare_span(const Span& s) {
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
   const xpos_t first = pixel_centre(s.x0);
   const Unit nl = t_.n.at(s.left), nr = t_.n.at(s.right);
@@ -59,6 +60,11 @@ void KbExactMethod::shade_span(const Span& s, Rgb8* out) {
       t.dl = lline.step.raw();
     }
   }
+}
+
+// Pixel loop: per term two CORDIC rotations, eq. 1, max(0, cos α), cos^n α for specular.
+inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
+  const int length = s.x1 - s.x0;
   for (int x = 0; x < length; ++x) {
     std::int64_t acc[3] = {t_.ambient[0], t_.ambient[1], t_.ambient[2]};
     for (int j = 0; j < terms_; ++j) {
@@ -82,6 +88,11 @@ void KbExactMethod::shade_span(const Span& s, Rgb8* out) {
     out[x] = Rgb8{level_of(acc[0]), level_of(acc[1]), level_of(acc[2])};
   }
   t_.counters->specular_evaluations += static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(terms_ / 2);
+}
+
+void KbExactMethod::shade_span(const Span& s, Rgb8* out) {
+  prepare_span(s);
+  evaluate_span(s, out);
 }
 
 }  // namespace tp::fw::kb
