@@ -37,7 +37,7 @@ Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) 
     for (int c = 0; c < 3; ++c) {
       // kd O_c (N.L) + ks (N.H)^n <= 2 (q1_30 saturates at 2 - 2^-30), times Il_c <= 16.
       const std::int64_t term = std::int64_t{mul(diffuse_colour[c], ndl).raw()} + spec.raw();
-      out.c[c] += fx::detail::round_shift_right(term * l.color[c].raw(), 16);
+      out.c[c] += fx::round_shift_right(term * l.color[c].raw(), 16);
     }
   }
   return out;
@@ -45,7 +45,7 @@ Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) 
 
 std::uint8_t to_level(std::int64_t i_q30) {
   constexpr std::int64_t one = std::int64_t{1} << 30;
-  const std::int64_t v = i_q30 < 0 ? 0 : (i_q30 > one ? one : i_q30);
+  const std::int64_t v = fx::clamp(i_q30, 0, one);
   return static_cast<std::uint8_t>((v * 255 + (one >> 1)) >> 30);
 }
 

@@ -31,7 +31,7 @@ void PhongMethod::shade_span(const Span& s, Rgb8* out) {
     const Vec3u normal = normalize_wide(n[0], n[1], n[2]);
     ++ctx_->counters->normalizations;
     const auto pos = [](std::int64_t v) {
-      return q15_16::from_raw(static_cast<std::int32_t>(fx::detail::round_shift_right(v, 30)));
+      return q15_16::from_raw(static_cast<std::int32_t>(fx::round_shift_right(v, 30)));
     };
     *out++ = to_rgb8(blinn_phong(*ctx_, Vec3q16{pos(p[0]), pos(p[1]), pos(p[2])}, normal));
     for (int i = 0; i < 3; ++i) lam.l[i] += step_.l[i];

@@ -46,8 +46,6 @@ using wide_t = std::int64_t;
 template <class S>
 constexpr int storage_bits = std::numeric_limits<S>::digits;  // excludes the sign bit
 
-using tp::fx::round_shift_right;  // MERGE-TEMP: old spelling, until every caller uses fx::
-
 }  // namespace detail
 
 template <int IntBits, int FracBits, class Storage = std::int32_t>

@@ -30,7 +30,7 @@ namespace tp::fw::kb {
 // Q15.16 (raw < 2^21), k·O_c <= 1 in Q1.30: the product·255 stays below 2^59.
 inline q1_30 term_weight(q15_16 intensity, q1_30 k_times_colour) {
   const std::int64_t p = std::int64_t{intensity.raw()} * k_times_colour.raw() * 255;
-  return q1_30::from_raw_sat(fx::detail::round_shift_right(p, 16 + 12));
+  return q1_30::from_raw_sat(fx::round_shift_right(p, 16 + 12));
 }
 
 // ka·O_c in span units (cosn's state format Q.S, S = cosn::kStateFrac, of 255·I/4096):
@@ -86,15 +86,15 @@ struct MaterialCoeffs {
 // f(θ) of one term at a single angle, in cosn's state format: the value of the one-pixel
 // segment of the same polynomial (make_segments(c, θ, 0, 1, 1)[0].st.v, without building it).
 inline std::int64_t f_at(const cosn::CosnCoeffs& c, angle_t theta) {
-  return cosn::fd_detail::seed_value(c, theta.raw(), q1_30::one().raw(),
-                                     cosn::fd_detail::piece_of(theta.raw(), c.a, c.b));
+  return cosn::seed_value(c, theta.raw(), q1_30::one().raw(),
+                                     cosn::piece_of(theta.raw(), c.a, c.b));
 }
 
 // scale_c = weight_c · f (f in cosn's state format, <= 1), rounded into Q1.30: f is first
 // rounded to Q.30 so that the product stays below 2^60.
 inline q1_30 scaled(q1_30 weight, std::int64_t f_state) {
-  const std::int64_t f30 = fx::detail::round_shift_right(f_state, cosn::kStateFrac - 30);
-  return q1_30::from_raw_sat(fx::detail::round_shift_right(std::int64_t{weight.raw()} * f30, 30));
+  const std::int64_t f30 = fx::round_shift_right(f_state, cosn::kStateFrac - 30);
+  return q1_30::from_raw_sat(fx::round_shift_right(std::int64_t{weight.raw()} * f30, 30));
 }
 
 // The triangle's three edges, as the rasterizer names them (EdgePos from -> to):
@@ -118,7 +118,7 @@ constexpr q1_30 edge_fraction(const EdgePos& e, bool reversed) {
 inline xpos_t edge_x(const Triangle& tri, const EdgePos& e) {
   const std::int64_t from = tri.v[e.from].sx, to = tri.v[e.to].sx;
   const std::int64_t num = (from << 30) + std::int64_t{e.t.raw()} * (to - from);
-  return xpos_t::from_raw_sat(fx::detail::round_shift_right(num, 30 + 4 - 16));
+  return xpos_t::from_raw_sat(fx::round_shift_right(num, 30 + 4 - 16));
 }
 inline xpos_t pixel_centre(std::int32_t x) {
   return xpos_t::from_raw_sat((std::int64_t{x} << 16) + (std::int64_t{1} << 15));

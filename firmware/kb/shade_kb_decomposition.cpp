@@ -19,7 +19,7 @@ namespace {
 // f·g of two Q.S factor values (<= 2^S) in Q.30.
 std::int64_t product_q30(std::int64_t f, std::int64_t g) {
   constexpr int cut = cosn::kStateFrac - 15;  // each factor to Q.15, the product to Q.30
-  return fx::detail::round_shift_right(f, cut) * fx::detail::round_shift_right(g, cut);
+  return fx::round_shift_right(f, cut) * fx::round_shift_right(g, cut);
 }
 
 bool beyond_on_one_side(std::int64_t a, std::int64_t b, std::int64_t support) {
@@ -88,7 +88,7 @@ inline void KbDecompositionMethod::evaluate_span(const Span& s, Rgb8* out) {
       }
       const std::int64_t p = product_q30(t.u.st.v, t.v.st.v);  // eq. 2: f(u)·f(v), per pixel
       for (int c = 0; c < 3; ++c)
-        acc[c] += fx::detail::round_shift_right(t.weight[c].raw() * p, 60 - cosn::kStateFrac);
+        acc[c] += fx::round_shift_right(t.weight[c].raw() * p, 60 - cosn::kStateFrac);
       cosn::step(t.u.st);
       cosn::step(t.v.st);
     }

@@ -73,14 +73,14 @@ inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
       const fx::SinCos b = fx::sin_cos_fast(angle_t::from_raw(static_cast<std::int32_t>(t.l)));
       // eq. 1; |cos α| <= 1 up to rounding, each product < 2^60, the sum < 2^61.
       const std::int64_t cc = std::int64_t{a.cos.raw()} * b.cos.raw();
-      const std::int64_t ss = fx::detail::round_shift_right(std::int64_t{a.sin.raw()} * b.sin.raw(), 30);
+      const std::int64_t ss = fx::round_shift_right(std::int64_t{a.sin.raw()} * b.sin.raw(), 30);
       const std::int64_t sum = cc + ss * t.cos_gamma.raw();
-      q1_30 cos_alpha = q1_30::from_raw_sat(fx::detail::round_shift_right(sum, 30));
+      q1_30 cos_alpha = q1_30::from_raw_sat(fx::round_shift_right(sum, 30));
       if (cos_alpha.raw() < 0) cos_alpha = q1_30::zero();
       if (cos_alpha > q1_30::one()) cos_alpha = q1_30::one();
       const q1_30 value = t.specular ? power(cos_alpha, exponent_) : cos_alpha;
       for (int c = 0; c < 3; ++c)
-        acc[c] += fx::detail::round_shift_right(std::int64_t{t.weight[c].raw()} * value.raw(),
+        acc[c] += fx::round_shift_right(std::int64_t{t.weight[c].raw()} * value.raw(),
                                                 60 - cosn::kStateFrac);
       t.n = wrap_pi(t.n + t.dn);  // n + n_t, kept in [−π, π] for the CORDIC
       t.l = wrap_pi(t.l + t.dl);
