@@ -259,6 +259,7 @@ ReferenceImage render_reference(const FrameSetup& f, const std::vector<DrawMesh>
       poly = clip_near(std::move(poly));
       if (poly.size() < 3) continue;
       std::vector<ScreenVertex> sv;
+      sv.reserve(poly.size());
       for (const auto& cv : poly) sv.push_back(to_screen(cv, f));
       if (interp == Interpolation::Angular)
         for (auto& s : sv) s.normal = glm::normalize(s.normal);
