@@ -38,9 +38,10 @@ void row(int n) {
   const int i = grid_index(n);
   const AB pp = of(paper_params(n)), cf = of(closed_params(n)), mm = of(table_params(n));
   const AB ls = i >= 0 ? ls_fit(i) : AB{NAN, NAN};
-  std::printf("| %5d | %6.2f | %6.3f | %6.3f | %6.3f | %.5f %.5f | %.5f %.5f | %.5f %.5f | %.5f %.5f |\n",
-              n, 100 * err(n, pp), 100 * err(n, cf), 100 * err(n, ls), 100 * err(n, mm), pp.a,
-              pp.b, cf.a, cf.b, ls.a, ls.b, mm.a, mm.b);
+  std::printf(
+      "| %5d | %6.2f | %6.3f | %6.3f | %6.3f | %.5f %.5f | %.5f %.5f | %.5f %.5f | %.5f %.5f |\n",
+      n, 100 * err(n, pp), 100 * err(n, cf), 100 * err(n, ls), 100 * err(n, mm), pp.a, pp.b, cf.a,
+      cf.b, ls.a, ls.b, mm.a, mm.b);
 }
 
 template <class Source>
@@ -57,16 +58,23 @@ void worst(const char* name, Source src, int from) {
 }  // namespace
 
 int main() {
-  std::printf("| n | paper %% | closed %% | LS fit %% | minimax %% | paper a b | closed a b | "
-              "LS a b | minimax a b |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| n | paper %% | closed %% | LS fit %% | minimax %% | paper a b | closed a b | "
+      "LS a b | minimax a b |\n|---|---|---|---|---|---|---|---|---|\n");
   for (int n : {1, 2, 3, 5, 10, 20, 50, 100, 125, 200, 500, 1000, 2000, 5000, 10000}) row(n);
   std::printf("\n| source | worst n | max error %% |\n|---|---|---|\n");
-  worst("paper", [](int n) { return paper_params(n); }, 1);
-  worst("paper", [](int n) { return paper_params(n); }, 126);
-  worst("closed form", [](int n) { return closed_params(n); }, 1);
-  worst("closed form", [](int n) { return closed_params(n); }, 3);
-  worst("minimax table (interpolated past 200)", [](int n) { return table_params(n); }, 1);
-  worst("minimax table (interpolated past 200)", [](int n) { return table_params(n); }, 3);
+  worst(
+      "paper", [](int n) { return paper_params(n); }, 1);
+  worst(
+      "paper", [](int n) { return paper_params(n); }, 126);
+  worst(
+      "closed form", [](int n) { return closed_params(n); }, 1);
+  worst(
+      "closed form", [](int n) { return closed_params(n); }, 3);
+  worst(
+      "minimax table (interpolated past 200)", [](int n) { return table_params(n); }, 1);
+  worst(
+      "minimax table (interpolated past 200)", [](int n) { return table_params(n); }, 3);
   double w = 0;
   int wn = 0;
   for (int i = 0; i < fits::kCount; ++i) {

@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   for (auto& c : trig_cases()) cases.push_back(std::move(c));
   for (auto& c : trig_fast_cases()) cases.push_back(std::move(c));
   for (auto& c : quat_cases()) cases.push_back(std::move(c));
-  std::printf("| function | inputs | n | max abs err (LSB) | mean abs err (LSB) | mean err (LSB) |\n");
+  std::printf(
+      "| function | inputs | n | max abs err (LSB) | mean abs err (LSB) | mean err (LSB) |\n");
   std::printf("|---|---|---:|---:|---:|---:|\n");
   for (const auto& c : cases) {
     if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;

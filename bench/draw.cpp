@@ -29,8 +29,8 @@ int main(int argc, char** argv) {
     if (!size.empty()) {
       int w = 0, h = 0;
       char x = 0;
-      if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-          h <= 0) {
+      if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
+          w <= 0 || h <= 0) {
         std::cerr << "tinyphong-draw: --size: expected WIDTHxHEIGHT, got '" << size << "'\n";
         return 2;
       }
@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
     const DeviceFrame frame = device.render();
     std::cout << "drew " << scene.name << " (" << frame.width << "x" << frame.height << ", "
               << scene.method << ")\ncounters:\n";
-    for (const auto& [name, value] : frame.counters) std::cout << "  " << name << " = " << value << "\n";
+    for (const auto& [name, value] : frame.counters)
+      std::cout << "  " << name << " = " << value << "\n";
   } catch (const std::exception& e) {
     std::cerr << "tinyphong-draw: " << e.what() << "\n";
     return 1;

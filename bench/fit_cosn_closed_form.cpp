@@ -77,8 +77,10 @@ V nelder_mead(const Problem& f, V x, double step, int iters) {
     if (fr < v[0]) {
       const V e = along(-2);
       const double fe = f(e);
-      if (fe < fr) s[P] = e, v[P] = fe;
-      else s[P] = r, v[P] = fr;
+      if (fe < fr)
+        s[P] = e, v[P] = fe;
+      else
+        s[P] = r, v[P] = fr;
     } else if (fr < v[P - 1]) {
       s[P] = r, v[P] = fr;
     } else {
@@ -129,9 +131,12 @@ int main(int argc, char** argv) {
   int n3 = 0;
   for (int n = 1; n <= 10000; ++n) {
     const double e = max_error(n, a_of(q, n), b_of(q, n), 4000);
-    if (n == 1) w1 = e;
-    else if (n == 2) w2 = e;
-    else if (e > w3) w3 = e, n3 = n;
+    if (n == 1)
+      w1 = e;
+    else if (n == 2)
+      w2 = e;
+    else if (e > w3)
+      w3 = e, n3 = n;
   }
   std::printf("\nmax error: n=1 %.3f %%, n=2 %.3f %%, 3..10000 %.3f %% (n=%d)\n", 100 * w1,
               100 * w2, 100 * w3, n3);

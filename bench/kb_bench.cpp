@@ -29,17 +29,17 @@
 #include "host/device_renderer.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
-#include "tables/cosn_reference.hpp"
 #include "kb_replay.hpp"
+#include "tables/cosn_reference.hpp"
 
 namespace {
 
 using namespace tp;
 using Clock = std::chrono::steady_clock;
-using kbbench::Frame;
-using kbbench::replay_frame;
 using kbbench::CoherenceDiff;
 using kbbench::compare_coherent_with_exact;
+using kbbench::Frame;
+using kbbench::replay_frame;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -61,8 +61,10 @@ struct KbTarget final : fw::SpanTarget {
   bool full = true;
   fw::Rgb8 out[fw::kMaxDimension];
   void span(const fw::Span& s) override {
-    if (full) m->shade_span(s, out);
-    else m->prepare_span(s);
+    if (full)
+      m->shade_span(s, out);
+    else
+      m->prepare_span(s);
   }
 };
 
@@ -140,8 +142,8 @@ void time_table(const std::string& base, const std::vector<int>& lights, int siz
     const double total = split.triangle_ms + split.span_setup_ms + split.pixel_ms;
     const double gouraud = median(times[0]);
     for (std::size_t m = 0; m < methods.size(); ++m) {
-      std::printf("| %s | %dx%d | %d | %s | %.2f | %.2f |", base.c_str(), scene.width,
-                  scene.height, l, methods[m].c_str(), median(times[m]), median(times[m]) / gouraud);
+      std::printf("| %s | %dx%d | %d | %s | %.2f | %.2f |", base.c_str(), scene.width, scene.height,
+                  l, methods[m].c_str(), median(times[m]), median(times[m]) / gouraud);
       if (methods[m] == "kb")
         std::printf(" %.0f / %.0f / %.0f |", 100 * split.triangle_ms / total,
                     100 * split.span_setup_ms / total, 100 * split.pixel_ms / total);
@@ -154,7 +156,9 @@ void time_table(const std::string& base, const std::vector<int>& lights, int siz
 }
 
 void exponent_sweep(const std::vector<std::string>& scenes) {
-  std::printf("\n| scene | n=1 | n=5 | n=20 | n=50 | n=125 | n=500 | n=2000 |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "\n| scene | n=1 | n=5 | n=20 | n=50 | n=125 | n=500 | n=2000 "
+      "|\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& name : scenes) {
     std::printf("| %s |", name.c_str());
     for (int n : {1, 5, 20, 50, 125, 500, 2000}) {
@@ -186,11 +190,12 @@ void diffuse_vs_cosine() {
     if (t > std::numbers::pi / 2) tail += f * std::numbers::pi / steps;
     cos_area += c * std::numbers::pi / steps;
   }
-  std::printf("\nDiffuse f(n = 1), least-squares (a, b) = (%.5f, %.5f) rad: max |f − max(0, cos)| = %.4f "
-              "at θ = %.3f rad (%.1f°); f > 0 up to b = %.1f°; light past the terminator "
-              "∫_{π/2}^{b} f = %.4f (%.2f %% of ∫ max(0, cos) = %.4f).\n",
-              a, b, worst, at, at * 180 / std::numbers::pi, b * 180 / std::numbers::pi, tail,
-              100 * tail / cos_area, cos_area);
+  std::printf(
+      "\nDiffuse f(n = 1), least-squares (a, b) = (%.5f, %.5f) rad: max |f − max(0, cos)| = %.4f "
+      "at θ = %.3f rad (%.1f°); f > 0 up to b = %.1f°; light past the terminator "
+      "∫_{π/2}^{b} f = %.4f (%.2f %% of ∫ max(0, cos) = %.4f).\n",
+      a, b, worst, at, at * 180 / std::numbers::pi, b * 180 / std::numbers::pi, tail,
+      100 * tail / cos_area, cos_area);
 }
 
 }  // namespace
@@ -202,18 +207,22 @@ int main(int argc, char** argv) {
   app.add_option("--reps", reps, "timing rounds (median taken)")->check(CLI::Range(1, 100));
   app.add_flag("--quick", quick, "one light count and no sweep (smoke run)");
   CLI11_PARSE(app, argc, argv);
-  const std::vector<std::string> scenes = {"sphere-32", "sphere-40",      "sphere-512",
-                                           "dodecahedron-30", "triangle", "teapot"};
+  const std::vector<std::string> scenes = {"sphere-32",       "sphere-40", "sphere-512",
+                                           "dodecahedron-30", "triangle",  "teapot"};
   const std::vector<int> lights = quick ? std::vector<int>{1} : std::vector<int>{1, 2, 4, 8};
-  std::printf("| scene | size | lights | method | frame ms | time / Gouraud | kb work: triangle / span setup / pixels %% | colour correctness (Phong ref) | vs angular: mean / max |\n");
+  std::printf(
+      "| scene | size | lights | method | frame ms | time / Gouraud | kb work: triangle / span "
+      "setup / pixels %% | colour correctness (Phong ref) | vs angular: mean / max |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
-  const std::vector<std::string> methods = {"gouraud", "phong", "kb", "kb-decomposition", "kb-exact"};
+  const std::vector<std::string> methods = {"gouraud", "phong", "kb", "kb-decomposition",
+                                            "kb-exact"};
   for (const auto& s : scenes) time_table(s, lights, 0, reps, methods);
   std::printf("\nSpeed targets (same columns):\n\n");
   time_table("triangle", {1, 8}, 1024, reps, {"gouraud", "phong", "kb"});
   time_table("sphere-32", {1, 8}, 1024, reps, {"gouraud", "phong", "kb"});
   std::printf("\nCoherent span setup against the exact setup of every span (1 light):\n\n");
-  std::printf("| scene | pixels | differing | mean |Δ| levels | max |Δ| |\n|---|---|---|---|---|\n");
+  std::printf(
+      "| scene | pixels | differing | mean |Δ| levels | max |Δ| |\n|---|---|---|---|---|\n");
   for (const auto& s : scenes) {
     host::Scene scene = load(s);
     scene.method = "kb";

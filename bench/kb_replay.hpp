@@ -35,7 +35,9 @@ inline Frame replay_frame(host::DeviceRenderer& r, const host::Scene& scene) {
   f.width = scene.width;
   f.height = scene.height;
   const host::Mesh& mesh = scene.meshes.at(0).mesh;
-  const auto q = [](double v, int frac) { return static_cast<std::int32_t>(std::llround(std::ldexp(v, frac))); };
+  const auto q = [](double v, int frac) {
+    return static_cast<std::int32_t>(std::llround(std::ldexp(v, frac)));
+  };
   std::vector<fw::ClipVertex> cv(mesh.positions.size());
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     fw::Vertex v;
@@ -78,8 +80,8 @@ struct CoherenceTarget final : fw::SpanTarget {
     coherent->shade_span(s, a);
     exact->shade_span(s, b);
     for (int i = 0; i < s.x1 - s.x0; ++i) {
-      const int d = std::max({std::abs(a[i].r - b[i].r), std::abs(a[i].g - b[i].g),
-                              std::abs(a[i].b - b[i].b)});
+      const int d = std::max(
+          {std::abs(a[i].r - b[i].r), std::abs(a[i].g - b[i].g), std::abs(a[i].b - b[i].b)});
       ++pixels;
       differing += d > 0;
       sum += d;

@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   int reps = 7;
   app.add_option("--scenes", scenes_arg, "comma-separated scene names from scenes/");
   app.add_option("--methods", methods_arg, "comma-separated methods (default: all)");
-  app.add_option("--reps", reps, "timing rounds per method (median taken)")->check(CLI::Range(1, 1000));
+  app.add_option("--reps", reps, "timing rounds per method (median taken)")
+      ->check(CLI::Range(1, 1000));
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
   CLI11_PARSE(app, argc, argv);
 
@@ -68,7 +69,8 @@ int main(int argc, char** argv) {
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-  std::cout << "Measured " << date << "; error against the double Phong reference (and the "
+  std::cout << "Measured " << date
+            << "; error against the double Phong reference (and the "
                "angular one), time = median frame time / Gouraud's in the same run ("
             << reps << " interleaved rounds).\n\n";
 
@@ -116,8 +118,9 @@ int main(int argc, char** argv) {
     const double gouraud = median(times["gouraud"]);
     std::printf("### %s (%dx%d, %zu light%s)\n\n", name.c_str(), scene.width, scene.height,
                 scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
-    std::printf("| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
-                "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
+        "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
     for (const std::string& m : methods) {
       const Row& r = rows[m];
       const double ms = median(times[m]);

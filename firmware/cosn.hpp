@@ -34,12 +34,12 @@ struct CosnParams {
 
 namespace detail {
 
-constexpr std::int64_t clamp_n(int n) {
-  return fx::clamp(n, kMinN, kMaxN);
-}
+constexpr std::int64_t clamp_n(int n) { return fx::clamp(n, kMinN, kMaxN); }
 
 // round(num / den) for num >= 0, den > 0.
-constexpr std::int64_t div_round(std::int64_t num, std::int64_t den) { return (num + den / 2) / den; }
+constexpr std::int64_t div_round(std::int64_t num, std::int64_t den) {
+  return (num + den / 2) / den;
+}
 
 // floor(sqrt(v)) for v >= 0 (bit-by-bit, no floating point).
 constexpr std::int64_t isqrt(std::int64_t v) {
@@ -80,8 +80,8 @@ constexpr CosnParams paper_params(int n_in) {
 // in Q16; see docs/ACCURACY.md. Max error: <= 1.469 % for 3 <= n <= 10,000, 1.812 % at n = 2
 // (the minimax optimum there is 1.765 %, so 1.5 % is out of reach of this f), 2.449 % at n = 1.
 struct ClosedForm {
-  std::int64_t scale_q29;          // α or β in Q2.29
-  std::int64_t p1, p0, q1, q0;     // rational correction, Q16
+  std::int64_t scale_q29;       // α or β in Q2.29
+  std::int64_t p1, p0, q1, q0;  // rational correction, Q16
 };
 inline constexpr ClosedForm kClosedA{404360434, 261676, 148572, 241773, -41575};
 inline constexpr ClosedForm kClosedB{1606548623, 98254, -50462, 119544, 15635};
@@ -113,14 +113,17 @@ constexpr CosnParams table_params(int n_in) {
   int lo = 0, hi = t::kCount - 1;  // invariant: kN[lo] <= n <= kN[hi]
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
-    if (t::kN[static_cast<std::size_t>(mid)] <= n) lo = mid;
-    else hi = mid;
+    if (t::kN[static_cast<std::size_t>(mid)] <= n)
+      lo = mid;
+    else
+      hi = mid;
   }
   const auto at = [](const auto& arr, int i) -> std::int64_t {
     return arr[static_cast<std::size_t>(i)];
   };
   const std::int64_t n0 = at(t::kN, lo), n1 = at(t::kN, hi);
-  if (n1 == n0 || n == n0) return {detail::angle_raw(at(t::kA_mm, lo)), detail::angle_raw(at(t::kB_mm, lo))};
+  if (n1 == n0 || n == n0)
+    return {detail::angle_raw(at(t::kA_mm, lo)), detail::angle_raw(at(t::kB_mm, lo))};
   if (n == n1) return {detail::angle_raw(at(t::kA_mm, hi)), detail::angle_raw(at(t::kB_mm, hi))};
   // Interpolation: a1 - a0 is negative; round the signed product symmetrically.
   const auto lerp = [&](std::int64_t v0, std::int64_t v1) {

@@ -25,7 +25,8 @@ inline constexpr int kFrac = 48;
 
 constexpr u64 mul_q48(u64 a, u64 b) {
   // a, b <= 2^48: the signed product's rounding (ties away from zero) is half up here.
-  return static_cast<u64>(fx::mul_shift_right(static_cast<std::int64_t>(a), static_cast<std::int64_t>(b), kFrac));
+  return static_cast<u64>(
+      fx::mul_shift_right(static_cast<std::int64_t>(a), static_cast<std::int64_t>(b), kFrac));
 }
 
 // x^n for x in Q.48, 0 <= x <= 1, n >= 0 (square-and-multiply).

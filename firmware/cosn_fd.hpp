@@ -38,8 +38,8 @@
 
 namespace tp::fw::cosn {
 
-inline constexpr int kStateFrac = 44;   // Q.44 state
-inline constexpr int kOutFrac = 16;     // output intensity: 1.0 = 2^16
+inline constexpr int kStateFrac = 44;  // Q.44 state
+inline constexpr int kOutFrac = 16;    // output intensity: 1.0 = 2^16
 inline constexpr int kMaxSpan = 4096;
 inline constexpr int kMaxSegments = 5;  // zero | outer | inner | outer | zero
 inline constexpr std::int64_t kMaxK = std::int64_t{1} << 14;
@@ -49,9 +49,9 @@ using scale_t = fx::q1_30;
 
 // 1/(ab) and 1/(b(b−a)) in Q.40 (relative precision 2^-41 at k >= 1/4), once per material.
 struct CosnCoeffs {
-  std::int64_t a = 0, b = 0;    // Q2.29 raw
-  std::int64_t k_in = 0;        // 1/(ab), Q.40
-  std::int64_t k_out = 0;       // 1/(b(b−a)), Q.40
+  std::int64_t a = 0, b = 0;  // Q2.29 raw
+  std::int64_t k_in = 0;      // 1/(ab), Q.40
+  std::int64_t k_out = 0;     // 1/(b(b−a)), Q.40
   bool valid = false;
 };
 
@@ -64,7 +64,7 @@ struct QuadState {
 struct CosnSegment {
   std::int32_t x = 0;  // first pixel of the segment
   std::int32_t piece = 0;
-  QuadState st;        // state of this piece's polynomial at x
+  QuadState st;  // state of this piece's polynomial at x
 };
 
 namespace fd_detail {
@@ -128,11 +128,11 @@ constexpr QuadState seed(const CosnCoeffs& c, i64 theta, i64 dtheta, i64 s, int 
   const i64 centre = inner ? 0 : (piece == 1 ? -c.b : c.b);
   const i64 e = theta - centre;
   const i64 sk = mul_shr(s, inner ? c.k_in : c.k_out, 26);  // Q30·Q40 -> Q.44 (< 2^58)
-  const i64 ske = mul_shr(sk, e, 29);                         // s·k·e, Q.44
-  i64 A = mul_shr(mul_shr(sk, dtheta, 29), dtheta, 29);       // s·k·dθ²
-  i64 B = 2 * mul_shr(ske, dtheta, 29);                       // 2·s·k·e·dθ
-  i64 C = mul_shr(ske, e, 29);                                // s·k·e²
-  if (inner) {  // 1 − k θ²
+  const i64 ske = mul_shr(sk, e, 29);                       // s·k·e, Q.44
+  i64 A = mul_shr(mul_shr(sk, dtheta, 29), dtheta, 29);     // s·k·dθ²
+  i64 B = 2 * mul_shr(ske, dtheta, 29);                     // 2·s·k·e·dθ
+  i64 C = mul_shr(ske, e, 29);                              // s·k·e²
+  if (inner) {                                              // 1 − k θ²
     A = -A, B = -B, C = (s << (kStateFrac - 30)) - C;
   }
   return {C, A + B, 2 * A};
@@ -163,11 +163,11 @@ constexpr CosnCoeffs make_coeffs(CosnParams p) {
   c.a = p.a.raw();
   c.b = p.b.raw();
   if (c.a <= 0 || c.b <= c.a || c.b > 4 * (std::int64_t{1} << 29)) return c;
-  const auto ab = static_cast<std::uint64_t>(c.a * c.b);              // Q.58, < 2^62
-  const auto bba = static_cast<std::uint64_t>(c.b * (c.b - c.a));     // Q.58
+  const auto ab = static_cast<std::uint64_t>(c.a * c.b);           // Q.58, < 2^62
+  const auto bba = static_cast<std::uint64_t>(c.b * (c.b - c.a));  // Q.58
   // k <= 2^14 <=> ab >= 2^44 (in Q.58); also keeps the quotient inside int64.
   if (ab < (std::uint64_t{1} << 44) || bba < (std::uint64_t{1} << 44)) return c;
-  c.k_in = fd_detail::recip_q98(ab);    // 2^98 / Q.58 = Q.40
+  c.k_in = fd_detail::recip_q98(ab);  // 2^98 / Q.58 = Q.40
   c.k_out = fd_detail::recip_q98(bba);
   c.valid = true;
   return c;
@@ -180,8 +180,8 @@ constexpr int make_segments(const CosnCoeffs& c, angle_t theta_begin, angle_t dt
                             int length, CosnSegment* out) {
   const std::int64_t t0 = theta_begin.raw(), s = scale.raw();
   const std::int64_t dt_in = length > 1 ? dtheta.raw() : 0;
-  const std::int64_t dt = dt_in > kMaxDThetaRaw ? kMaxDThetaRaw
-                                                 : (dt_in < -kMaxDThetaRaw ? -kMaxDThetaRaw : dt_in);
+  const std::int64_t dt =
+      dt_in > kMaxDThetaRaw ? kMaxDThetaRaw : (dt_in < -kMaxDThetaRaw ? -kMaxDThetaRaw : dt_in);
   int count = 0;
   std::int64_t x = 0;
   int piece = fd_detail::piece_of(t0, c.a, c.b);

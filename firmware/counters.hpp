@@ -10,35 +10,35 @@ namespace tp::fw {
 
 struct Counters {
   // Geometry.
-  std::uint64_t triangles_in = 0;        // triangles submitted by draw
-  std::uint64_t triangles_culled = 0;    // removed by back-face culling
-  std::uint64_t triangles_clipped = 0;   // touched by a clip plane (near plane or guard band)
-  std::uint64_t triangles_rejected = 0;  // entirely outside a clip plane
-  std::uint64_t triangles_degenerate = 0;// zero area after snapping to 1/16 pixel
-  std::uint64_t triangles_drawn = 0;     // rasterized (after clipping: one per fan triangle)
-  std::uint64_t triangles_skipped = 0;   // a method's setup returned "skip"
+  std::uint64_t triangles_in = 0;          // triangles submitted by draw
+  std::uint64_t triangles_culled = 0;      // removed by back-face culling
+  std::uint64_t triangles_clipped = 0;     // touched by a clip plane (near plane or guard band)
+  std::uint64_t triangles_rejected = 0;    // entirely outside a clip plane
+  std::uint64_t triangles_degenerate = 0;  // zero area after snapping to 1/16 pixel
+  std::uint64_t triangles_drawn = 0;       // rasterized (after clipping: one per fan triangle)
+  std::uint64_t triangles_skipped = 0;     // a method's setup returned "skip"
   // Raster.
-  std::uint64_t spans = 0;               // non-empty spans handed to a method
-  std::uint64_t pixels_shaded = 0;       // pixels a method computed
-  std::uint64_t pixels_written = 0;      // pixels that passed the depth test
+  std::uint64_t spans = 0;           // non-empty spans handed to a method
+  std::uint64_t pixels_shaded = 0;   // pixels a method computed
+  std::uint64_t pixels_written = 0;  // pixels that passed the depth test
   // Per-method work.
-  std::uint64_t lighting_evaluations = 0;// full Blinn-Phong evaluations (vertex, centroid, pixel)
-  std::uint64_t specular_evaluations = 0;// pixels/points where a specular power was evaluated
-  std::uint64_t normalizations = 0;      // rsqrt renormalisations
+  std::uint64_t lighting_evaluations = 0;  // full Blinn-Phong evaluations (vertex, centroid, pixel)
+  std::uint64_t specular_evaluations = 0;  // pixels/points where a specular power was evaluated
+  std::uint64_t normalizations = 0;        // rsqrt renormalisations
   std::uint64_t lights_skipped_triangle = 0;
   std::uint64_t lights_skipped_span = 0;
-  std::uint64_t segments = 0;            // span segments (summed sections, Kuijk-Blake)
+  std::uint64_t segments = 0;  // span segments (summed sections, Kuijk-Blake)
   // kb-adaptive: triangles per path (kb_adaptive.hpp), sub-triangles, exact lattice samples.
-  std::uint64_t adaptive_constant = 0;   // one colour within the budget
-  std::uint64_t adaptive_linear = 0;     // a plane per channel within the budget
-  std::uint64_t adaptive_quadratic = 0;  // one quadratic per channel, all lights summed
-  std::uint64_t adaptive_subdivided = 0; // cut into 4^k sub-triangles with exact samples
-  std::uint64_t adaptive_exact = 0;      // small and over budget: exact at every pixel
-  std::uint64_t subtriangles = 0;        // sub-triangles of the subdivided triangles
-  std::uint64_t subtriangles_exact = 0;  // of those, evaluated per pixel (over budget at 4^4)
-  std::uint64_t terminator_cells = 0;    // cells (or triangles) clamping N·L per pixel
-  std::uint64_t lattice_samples = 0;     // exact Blinn-Phong samples (vertices, midpoints, checks)
-  std::uint64_t frames = 0;              // end_frame calls since construction (not reset)
+  std::uint64_t adaptive_constant = 0;    // one colour within the budget
+  std::uint64_t adaptive_linear = 0;      // a plane per channel within the budget
+  std::uint64_t adaptive_quadratic = 0;   // one quadratic per channel, all lights summed
+  std::uint64_t adaptive_subdivided = 0;  // cut into 4^k sub-triangles with exact samples
+  std::uint64_t adaptive_exact = 0;       // small and over budget: exact at every pixel
+  std::uint64_t subtriangles = 0;         // sub-triangles of the subdivided triangles
+  std::uint64_t subtriangles_exact = 0;   // of those, evaluated per pixel (over budget at 4^4)
+  std::uint64_t terminator_cells = 0;     // cells (or triangles) clamping N·L per pixel
+  std::uint64_t lattice_samples = 0;      // exact Blinn-Phong samples (vertices, midpoints, checks)
+  std::uint64_t frames = 0;               // end_frame calls since construction (not reset)
 };
 
 }  // namespace tp::fw

@@ -71,8 +71,9 @@ class PixelWriter final : public SpanTarget {
     std::uint8_t* colour_row =
         dev_.region<std::uint8_t>(st.off_colour) + row * bytes_per_pixel(st.viewport.format);
     const Lambdas lam = lambdas_at(tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
-    const Run run{colours, depth, colour_row, counts, zplane_.at(lam) << ScreenPlane::kStepFrac,
-                  zplane_.step_x(), s.x0, s.x1};
+    const Run run{
+        colours,          depth, colour_row, counts, zplane_.at(lam) << ScreenPlane::kStepFrac,
+        zplane_.step_x(), s.x0,  s.x1};
     // The format, the depth test and the write counts are fixed for the draw: one loop for each
     // combination, chosen here, so that the pixel loop branches on none of them. The depth is
     // linear along the span: when both ends' depth words need no saturation, none does.
@@ -81,7 +82,8 @@ class PixelWriter final : public SpanTarget {
         depth_in_range(run.z >> ScreenPlane::kStepFrac) &&
         depth_in_range((run.z + run.dz * (s.x1 - s.x0 - 1)) >> ScreenPlane::kStepFrac);
     const int variant = (rgb565 ? 4 : 0) | (st.depth_test ? 2 : 0) | (counts != nullptr ? 1 : 0);
-    c.pixels_written += exact_depth ? write_variant<true>(variant, run) : write_variant<false>(variant, run);
+    c.pixels_written +=
+        exact_depth ? write_variant<true>(variant, run) : write_variant<false>(variant, run);
   }
 
  private:
@@ -133,7 +135,8 @@ class PixelWriter final : public SpanTarget {
       const Rgb8 px = *colour;
       if constexpr (kRgb565) {
         // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
-        const auto v = static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
+        const auto v =
+            static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
         colour_row[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
         colour_row[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
       } else {
@@ -327,7 +330,8 @@ Error Device::upload_vertices(std::uint32_t first, std::span<const Vertex> verti
     if (e != Error::kOk) return fail(e);
   }
   if (!vertices.empty())
-    std::memcpy(region<Vertex>(state_.off_vertices) + first, vertices.data(), vertices.size_bytes());
+    std::memcpy(region<Vertex>(state_.off_vertices) + first, vertices.data(),
+                vertices.size_bytes());
   if (end > state_.vertex_count) state_.vertex_count = static_cast<std::uint32_t>(end);
   return ok();
 }
@@ -336,7 +340,8 @@ Error Device::upload_indices(std::uint32_t first, std::span<const std::uint32_t>
   const std::uint64_t end = std::uint64_t{first} + indices.size();
   if (end > state_.capacity.max_indices) return fail(Error::kIndexOutOfRange);
   if (!indices.empty())
-    std::memcpy(region<std::uint32_t>(state_.off_indices) + first, indices.data(), indices.size_bytes());
+    std::memcpy(region<std::uint32_t>(state_.off_indices) + first, indices.data(),
+                indices.size_bytes());
   if (end > state_.index_count) state_.index_count = static_cast<std::uint32_t>(end);
   return ok();
 }
@@ -346,7 +351,8 @@ void Device::clear_regions(Rgb8 colour) {
   const std::size_t pixels = std::size_t{s.viewport.width} * s.viewport.height;
   std::uint8_t* c = region<std::uint8_t>(s.off_colour);
   if (s.viewport.format == PixelFormat::kRgb565) {
-    const auto v = static_cast<std::uint16_t>(((colour.r >> 3) << 11) | ((colour.g >> 2) << 5) | (colour.b >> 3));
+    const auto v = static_cast<std::uint16_t>(((colour.r >> 3) << 11) | ((colour.g >> 2) << 5) |
+                                              (colour.b >> 3));
     for (std::size_t i = 0; i < pixels; ++i) {
       c[2 * i] = static_cast<std::uint8_t>(v & 0xffu);
       c[2 * i + 1] = static_cast<std::uint8_t>(v >> 8);
@@ -395,7 +401,8 @@ ShadingMethod& Device::method() {
 Error Device::draw(const DrawCmd& cmd) {
   if (!state_.viewport_set) return fail(Error::kNoViewport);
   if (cmd.count % 3 != 0) return fail(Error::kBadArgument);
-  if (std::uint64_t{cmd.first} + cmd.count > state_.index_count) return fail(Error::kIndexOutOfRange);
+  if (std::uint64_t{cmd.first} + cmd.count > state_.index_count)
+    return fail(Error::kIndexOutOfRange);
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
@@ -431,9 +438,10 @@ void Device::draw_triangle(const ClipVertex tri[3]) {
   ShadeVertex sv[kMaxClipVertices];
   for (int i = 0; i < cr.count; ++i) sv[i] = project(poly[i], w, h);
   // Facing of an unclipped triangle: its snapped screen area, front = clockwise on screen
-  // (y down) = negative edge function here. For a clipped triangle the exact homogeneous determinant decides instead: the snapped
-  // pieces of a zero-area or sliver triangle could otherwise come out with either orientation.
-  // det[x y w] > 0 is counter-clockwise in NDC (y up), i.e. clockwise on screen: front.
+  // (y down) = negative edge function here. For a clipped triangle the exact homogeneous
+  // determinant decides instead: the snapped pieces of a zero-area or sliver triangle could
+  // otherwise come out with either orientation. det[x y w] > 0 is counter-clockwise in NDC (y up),
+  // i.e. clockwise on screen: front.
   bool front = false;
   if (cr.clipped) {
     const int o = homogeneous_orientation(tri);
@@ -497,8 +505,9 @@ const std::uint32_t* Device::depth_buffer() const {
 }
 
 const std::uint8_t* Device::write_counts() const {
-  return state_.viewport_set && state_.viewport.write_count ? region<std::uint8_t>(state_.off_counts)
-                                                            : nullptr;
+  return state_.viewport_set && state_.viewport.write_count
+             ? region<std::uint8_t>(state_.off_counts)
+             : nullptr;
 }
 
 }  // namespace tp::fw

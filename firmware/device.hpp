@@ -41,8 +41,8 @@ struct DeviceState {
   bool viewport_set = false;
   ViewportCmd viewport;
   BufferCapacityCmd capacity;
-  Mat4 modelview;   // identity after construction
-  Mat4 projection;  // identity after construction
+  Mat4 modelview;        // identity after construction
+  Mat4 projection;       // identity after construction
   ShadeContext shading;  // material, lights, eye (counters pointer set by the device)
   Method method = Method::kGouraud;
   bool cull_back_faces = true;
@@ -57,7 +57,7 @@ struct DeviceState {
 struct FramebufferView {
   const std::uint8_t* data = nullptr;  // row 0 first
   std::uint32_t width = 0, height = 0;
-  std::uint32_t stride = 0;            // bytes per row
+  std::uint32_t stride = 0;  // bytes per row
   PixelFormat format = PixelFormat::kRgb888;
 };
 
@@ -65,21 +65,21 @@ struct FramebufferView {
 // (opcode | payload_words << 16) followed by its payload. Payload layouts (all words are
 // uint32; Q values are their raw two's-complement bits):
 enum class Opcode : std::uint16_t {
-  kSetViewport = 1,       // width, height, format, write_count(0/1)                    4
-  kSetBufferCapacity = 2, // max_vertices, max_indices                                  2
-  kSetModelView = 3,      // 16 Q15.16, column-major m[col][row]                        16
-  kSetProjection = 4,     // 16 Q15.16, column-major                                    16
-  kSetEye = 5,            // EyeMode                                                    1
-  kSetMaterial = 6,       // r g b ka kd ks (q1_30), n, a b (q2_29)                     9
-  kSetLight = 7,          // index, type, r g b (Q15.16), dx dy dz (q1_30), px py pz    11
-  kSetMethod = 8,         // Method                                                     1
-  kSetCulling = 9,        // 0 / 1                                                      1
-  kSetDepthTest = 10,     // 0 / 1                                                      1
-  kUploadVertices = 11,   // first, count, count x (px py pz Q15.16, nx ny nz q1_30)    2 + 6 count
-  kUploadIndices = 12,    // first, count, count x index                               2 + count
-  kClear = 13,            // 0x00RRGGBB                                                 1
-  kDraw = 14,             // first, count                                               2
-  kEndFrame = 15,         //                                                            0
+  kSetViewport = 1,        // width, height, format, write_count(0/1)                    4
+  kSetBufferCapacity = 2,  // max_vertices, max_indices                                  2
+  kSetModelView = 3,       // 16 Q15.16, column-major m[col][row]                        16
+  kSetProjection = 4,      // 16 Q15.16, column-major                                    16
+  kSetEye = 5,             // EyeMode                                                    1
+  kSetMaterial = 6,        // r g b ka kd ks (q1_30), n, a b (q2_29)                     9
+  kSetLight = 7,           // index, type, r g b (Q15.16), dx dy dz (q1_30), px py pz    11
+  kSetMethod = 8,          // Method                                                     1
+  kSetCulling = 9,         // 0 / 1                                                      1
+  kSetDepthTest = 10,      // 0 / 1                                                      1
+  kUploadVertices = 11,    // first, count, count x (px py pz Q15.16, nx ny nz q1_30)    2 + 6 count
+  kUploadIndices = 12,     // first, count, count x index                               2 + count
+  kClear = 13,             // 0x00RRGGBB                                                 1
+  kDraw = 14,              // first, count                                               2
+  kEndFrame = 15,          //                                                            0
 };
 inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_words) {
   return static_cast<std::uint32_t>(op) | (payload_words << 16);

@@ -2,8 +2,8 @@
 
 #include <bit>
 
-#include "fixedpoint/arith.hpp"
 #include "firmware/vecmath.hpp"
+#include "fixedpoint/arith.hpp"
 #include "fixedpoint/vec3.hpp"
 #include "fixedpoint/wide.hpp"
 
@@ -26,8 +26,8 @@ wide row_times(const Mat4& m, int i, wide a, wide b, wide c, wide d_scaled) {
 wide plane_distance(const ClipVertex& v, int p) {
   const wide x = v.clip[0], y = v.clip[1], z = v.clip[2], w = v.clip[3];
   switch (p) {
-    case 0: return z + w;                 // near: z >= -w
-    case 1: return w - 16;                // w >= 2^-12
+    case 0: return z + w;   // near: z >= -w
+    case 1: return w - 16;  // w >= 2^-12
     case 2: return kGuardBand * w - x;
     case 3: return kGuardBand * w + x;
     case 4: return kGuardBand * w - y;
@@ -143,8 +143,9 @@ ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height
   s.sy = static_cast<std::int32_t>(
       fx::div<fx::int_q>(fx::int_q::from_raw((w - y) * 8 * height), fx::int_q::from_raw(w)).raw());
   // NDC z with 30 fraction bits, saturated to [-2, 2): beyond the far plane depth is clamped.
-  s.z = fx::div<fx::Q<1, 30, std::int64_t>>(q15_16::from_raw(v.clip[2]), q15_16::from_raw(v.clip[3]))
-            .raw();
+  s.z =
+      fx::div<fx::Q<1, 30, std::int64_t>>(q15_16::from_raw(v.clip[2]), q15_16::from_raw(v.clip[3]))
+          .raw();
   s.w = q15_16::from_raw(v.clip[3]);
   s.eye = v.eye;
   s.normal = v.normal;

@@ -52,10 +52,9 @@ class ScreenPlane {
     shift_ = shift_to_fit(static_cast<std::uint64_t>(t.area2), 27);
     area_ = t.area2 >> shift_;
     // dv/dpx = (d1 (y2 - y0) + d2 (y0 - y1)) / area2, times 16 subpixels per pixel.
-    const std::int64_t num = d1_ * (std::int64_t{t.v[2].sy} - t.v[0].sy) +
-                             d2_ * (std::int64_t{t.v[0].sy} - t.v[1].sy);
-    step_ = fx::div<Step>(fx::int_q::from_raw(num),
-                          fx::Q<58, 4, std::int64_t>::from_raw(t.area2))
+    const std::int64_t num =
+        d1_ * (std::int64_t{t.v[2].sy} - t.v[0].sy) + d2_ * (std::int64_t{t.v[0].sy} - t.v[1].sy);
+    step_ = fx::div<Step>(fx::int_q::from_raw(num), fx::Q<58, 4, std::int64_t>::from_raw(t.area2))
                 .raw();
   }
   std::int64_t at(const Lambdas& lam) const {
@@ -99,7 +98,8 @@ class PerspectiveBary {
       b[1] = b[2] = q1_30::zero();
       return;
     }
-    for (int i = 0; i < 3; ++i) b[i] = fx::div<q1_30>(fx::int_q::from_raw(mu[i]), fx::int_q::from_raw(sum));
+    for (int i = 0; i < 3; ++i)
+      b[i] = fx::div<q1_30>(fx::int_q::from_raw(mu[i]), fx::int_q::from_raw(sum));
   }
 
  private:

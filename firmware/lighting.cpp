@@ -49,6 +49,8 @@ std::uint8_t to_level(std::int64_t i_q30) {
   return static_cast<std::uint8_t>((v * 255 + (one >> 1)) >> 30);
 }
 
-Rgb8 to_rgb8(const Radiance& r) { return Rgb8{to_level(r.c[0]), to_level(r.c[1]), to_level(r.c[2])}; }
+Rgb8 to_rgb8(const Radiance& r) {
+  return Rgb8{to_level(r.c[0]), to_level(r.c[1]), to_level(r.c[2])};
+}
 
 }  // namespace tp::fw

@@ -51,7 +51,9 @@ struct Radiance {
 // The first product of the result, 1·x^(2^k), is exact ((2^30·b + 2^29) >> 30 = b), so it is
 // taken as is: the same value with one multiplication and test less.
 inline q1_30 power(q1_30 x, std::uint32_t n) {
-  const auto mul = [](std::int64_t a, std::int64_t b) { return (a * b + (std::int64_t{1} << 29)) >> 30; };
+  const auto mul = [](std::int64_t a, std::int64_t b) {
+    return (a * b + (std::int64_t{1} << 29)) >> 30;
+  };
   if (n == 0) return q1_30::one();
   std::int64_t base = x.raw();
   for (; (n & 1u) == 0; n >>= 1) base = mul(base, base);

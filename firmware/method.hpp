@@ -1,4 +1,5 @@
-// The per-method interface (docs/CONVENTIONS.md, "Methods"): every shading method is one class behind this.
+// The per-method interface (docs/CONVENTIONS.md, "Methods"): every shading method is one class
+// behind this.
 //
 // The pipeline is setup -> traversal -> shading, kept apart:
 //   1. geometry (geometry.cpp) transforms, clips and projects; each triangle that reaches the
@@ -22,12 +23,12 @@ namespace tp::fw {
 
 // One transformed vertex, as every method sees it.
 struct ShadeVertex {
-  Vec3q16 eye;             // eye-space position
-  Vec3u normal;            // eye-space unit normal
-  std::int32_t sx = 0;     // screen x in 1/16 pixel (pixel i's centre is 16 i + 8)
-  std::int32_t sy = 0;     // screen y in 1/16 pixel, row 0 at the top
-  std::int64_t z = 0;      // NDC z = z_clip / w, 30 fraction bits, clamped to [-2, 2]
-  q15_16 w;                // clip w (> 0 after clipping)
+  Vec3q16 eye;          // eye-space position
+  Vec3u normal;         // eye-space unit normal
+  std::int32_t sx = 0;  // screen x in 1/16 pixel (pixel i's centre is 16 i + 8)
+  std::int32_t sy = 0;  // screen y in 1/16 pixel, row 0 at the top
+  std::int64_t z = 0;   // NDC z = z_clip / w, 30 fraction bits, clamped to [-2, 2]
+  q15_16 w;             // clip w (> 0 after clipping)
 };
 
 // A triangle ready for rasterization: area2 > 0 (vertex order fixed up by the pipeline, so the
@@ -55,9 +56,9 @@ struct EdgePos {
 };
 
 struct Span {
-  std::int32_t y = 0;          // pixel row
-  std::int32_t x0 = 0, x1 = 0; // pixels [x0, x1), x1 > x0, already inside the viewport
-  EdgePos left, right;         // the span's ends on the triangle's edges (before the scissor)
+  std::int32_t y = 0;           // pixel row
+  std::int32_t x0 = 0, x1 = 0;  // pixels [x0, x1), x1 > x0, already inside the viewport
+  EdgePos left, right;          // the span's ends on the triangle's edges (before the scissor)
 };
 
 // What a method may read besides the triangle: material, lights, eye, and the counters.

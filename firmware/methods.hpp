@@ -1,5 +1,5 @@
-// The shading methods implemented so far (docs/CONVENTIONS.md, "Methods"), one unit each. Each states
-// what it handles exactly: all three take point lights, a finite eye and up to kMaxLights
+// The shading methods implemented so far (docs/CONVENTIONS.md, "Methods"), one unit each. Each
+// states what it handles exactly: all three take point lights, a finite eye and up to kMaxLights
 // lights with the exact Blinn-Phong formula; they differ in where the formula is evaluated.
 #pragma once
 

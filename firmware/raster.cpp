@@ -40,8 +40,8 @@ class EdgeWalker {
   EdgePos pos(std::int32_t yc, EdgeParameters edges) const {
     if (edges == EdgeParameters::kWithout) return EdgePos{from_, to_, q1_30::zero()};
     // t = (yc - ay) / dy in [0, 1): the row centre lies on the edge's half-open y range.
-    const auto t = fx::div<q1_30>(fx::int_q::from_raw(std::int64_t{yc} - ay_),
-                                  fx::int_q::from_raw(dy_));
+    const auto t =
+        fx::div<q1_30>(fx::int_q::from_raw(std::int64_t{yc} - ay_), fx::int_q::from_raw(dy_));
     return EdgePos{from_, to_, t};
   }
 
@@ -58,9 +58,21 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
   // Sort the vertices top to bottom (indices only: the method sees the triangle unchanged).
   std::uint8_t top = 0, mid = 1, bot = 2;
   const auto y = [&](std::uint8_t i) { return tri.v[i].sy; };
-  if (y(mid) < y(top)) { const auto t = top; top = mid; mid = t; }
-  if (y(bot) < y(mid)) { const auto t = mid; mid = bot; bot = t; }
-  if (y(mid) < y(top)) { const auto t = top; top = mid; mid = t; }
+  if (y(mid) < y(top)) {
+    const auto t = top;
+    top = mid;
+    mid = t;
+  }
+  if (y(bot) < y(mid)) {
+    const auto t = mid;
+    mid = bot;
+    bot = t;
+  }
+  if (y(mid) < y(top)) {
+    const auto t = top;
+    top = mid;
+    mid = t;
+  }
 
   // Rows whose centre yc satisfies ytop <= yc < ybot, inside the viewport.
   const std::int32_t row0 =

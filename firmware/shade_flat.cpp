@@ -6,7 +6,8 @@ namespace tp::fw {
 bool FlatMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   // Centroid of the eye-space triangle; each coordinate sum of three Q15.16 values fits 64 bits.
   const auto mean = [&](auto get) {
-    const std::int64_t sum = std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
+    const std::int64_t sum =
+        std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
     return q15_16::from_raw(static_cast<std::int32_t>(
         fx::div<fx::int_q>(fx::int_q::from_raw(sum), fx::int_q::from_raw(3)).raw()));
   };

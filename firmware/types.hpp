@@ -18,17 +18,17 @@ using fx::q2_29;
 // A command that returns anything but kOk has changed nothing in the device state.
 enum class Error : std::uint32_t {
   kOk = 0,
-  kBadOpcode = 1,          // command stream: unknown opcode
-  kBadLength = 2,          // command stream: payload length wrong for the opcode
-  kBadArgument = 3,        // an enum or flag outside its documented values
-  kOutOfMemory = 4,        // the layout (framebuffer, buffers) does not fit the memory block
-  kViewportTooLarge = 5,   // width or height 0 or above kMaxDimension
-  kIndexOutOfRange = 6,    // an index >= vertex count, a range outside a buffer
-  kNotUnit = 7,            // a normal / direction whose squared length is not 1 within tolerance
-  kOutOfRange = 8,         // a matrix entry, coordinate or transformed value not representable
-  kTooManyLights = 9,      // light index >= kMaxLights
-  kUnknownMethod = 10,     // method id not implemented (reserved ids included)
-  kNoViewport = 11,        // draw/clear before set_viewport
+  kBadOpcode = 1,         // command stream: unknown opcode
+  kBadLength = 2,         // command stream: payload length wrong for the opcode
+  kBadArgument = 3,       // an enum or flag outside its documented values
+  kOutOfMemory = 4,       // the layout (framebuffer, buffers) does not fit the memory block
+  kViewportTooLarge = 5,  // width or height 0 or above kMaxDimension
+  kIndexOutOfRange = 6,   // an index >= vertex count, a range outside a buffer
+  kNotUnit = 7,           // a normal / direction whose squared length is not 1 within tolerance
+  kOutOfRange = 8,        // a matrix entry, coordinate or transformed value not representable
+  kTooManyLights = 9,     // light index >= kMaxLights
+  kUnknownMethod = 10,    // method id not implemented (reserved ids included)
+  kNoViewport = 11,       // draw/clear before set_viewport
 };
 
 enum class PixelFormat : std::uint32_t { kRgb888 = 0, kRgb565 = 1 };
@@ -39,27 +39,27 @@ enum class Method : std::uint32_t {
   kFlat = 1,
   kGouraud = 2,
   kPhong = 3,
-  kDuff = 4,           // reserved
-  kBishopWeimer = 5,   // reserved
-  kKuijkBlake = 6,     // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
-  kBrown = 7,          // reserved
-  kVlasic = 8,         // reserved
+  kDuff = 4,              // reserved
+  kBishopWeimer = 5,      // reserved
+  kKuijkBlake = 6,        // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
+  kBrown = 7,             // reserved
+  kVlasic = 8,            // reserved
   kKuijkBlakeNoSkip = 9,  // the same with every skip disabled (verification: identical image)
   // 10: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
-  kKuijkBlakeDecomposition = 11,  // Kuijk-Blake decomposition, eq. 2
-  kKuijkBlakeExact = 12,          // Kuijk-Blake exact angular interpolation, eq. 1
-  kKuijkBlakeAdaptive = 13,       // per-triangle choice under an error budget (kb_adaptive.hpp)
-  kKuijkBlakeAdaptiveNoSkip = 14, // the same without skipping (verification: identical image)
-  kKuijkBlakeAdaptiveExact = 15,  // its exact evaluation at every pixel (the budget's reference)
+  kKuijkBlakeDecomposition = 11,   // Kuijk-Blake decomposition, eq. 2
+  kKuijkBlakeExact = 12,           // Kuijk-Blake exact angular interpolation, eq. 1
+  kKuijkBlakeAdaptive = 13,        // per-triangle choice under an error budget (kb_adaptive.hpp)
+  kKuijkBlakeAdaptiveNoSkip = 14,  // the same without skipping (verification: identical image)
+  kKuijkBlakeAdaptiveExact = 15,   // its exact evaluation at every pixel (the budget's reference)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };
 enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 
 // Device limits. The bound arguments are in raster.cpp (coordinates) and device.cpp (inputs).
-inline constexpr std::uint32_t kMaxDimension = 4096;   // largest width and height
+inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
 inline constexpr std::uint32_t kMaxLights = 16;
-inline constexpr std::uint32_t kMaxExponent = 4096;    // Blinn-Phong n
+inline constexpr std::uint32_t kMaxExponent = 4096;  // Blinn-Phong n
 // Matrix entries and vertex coordinates must satisfy |v| < 2^14 (so that a 4-term dot product of
 // raw Q15.16 values stays below 2^62 in 64-bit arithmetic).
 inline constexpr std::int32_t kMaxCoordRaw = (std::int32_t{1} << 30) - 1;
@@ -86,8 +86,8 @@ struct BufferCapacityCmd {
   std::uint32_t max_vertices = 0, max_indices = 0;
 };
 struct MaterialCmd {
-  q1_30 color[3];  // O_c in [0, 1]
-  q1_30 ka, kd, ks;  // each in [0, 1]
+  q1_30 color[3];       // O_c in [0, 1]
+  q1_30 ka, kd, ks;     // each in [0, 1]
   std::uint32_t n = 1;  // Blinn-Phong exponent, 1..kMaxExponent
   // Kuijk-Blake (a, b) in radians for the later methods: 0 <= a < b <= pi/2, or both 0 (unset).
   q2_29 a, b;
@@ -95,9 +95,9 @@ struct MaterialCmd {
 struct LightCmd {
   std::uint32_t index = 0;
   LightType type = LightType::kOff;
-  q15_16 color[3];  // intensity per channel, 0..16
-  Vec3u direction;  // directional: unit vector TOWARD the light, eye space
-  Vec3q16 position; // point: eye-space position
+  q15_16 color[3];   // intensity per channel, 0..16
+  Vec3u direction;   // directional: unit vector TOWARD the light, eye space
+  Vec3q16 position;  // point: eye-space position
 };
 struct Vertex {
   Vec3q16 position;  // model space

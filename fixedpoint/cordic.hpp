@@ -57,7 +57,9 @@ inline constexpr wide_t kPiQ60 = tables::pi_q60;
 inline constexpr wide_t kHalfPiQ60 = tables::pi_q60 / 2;
 
 // A Q60 angle (|z| <= π) into angle_t, rounded.
-constexpr angle_t angle_from_q60(wide_t z) { return angle_t::from_raw_sat(round_shift_right(z, 31)); }
+constexpr angle_t angle_from_q60(wide_t z) {
+  return angle_t::from_raw_sat(round_shift_right(z, 31));
+}
 
 // Vectoring mode on (y, x), |x|, |y| <= 2^62: returns the angle in Q60 and x_final (the
 // magnitude times the CORDIC gain K, scaled by 2^shift relative to the inputs).
@@ -93,8 +95,10 @@ constexpr int prepare_vectoring(wide_t& x, wide_t& y, wide_t& z) {
 // of 2^-60 per step) for the setup-grade ones, whose residual is finished in closed form.
 template <bool kRounded>
 constexpr wide_t step_shift(wide_t v, int i) {
-  if constexpr (kRounded) return round_shift_right(v, i);
-  else return v >> i;
+  if constexpr (kRounded)
+    return round_shift_right(v, i);
+  else
+    return v >> i;
 }
 template <bool kRounded>
 constexpr void vectoring_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
@@ -167,16 +171,16 @@ constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
   // Now x in [2^58, 2^61) and the residual angle r = atan(t), t = |y|/x < tan(atan 2^-7)
   // (so |y| < 2^54). t in Q54 by two 64-bit divisions (x truncated to 2^-34 relative).
   const u64 ym = magnitude(y);
-  const u64 xd = static_cast<u64>(x) >> 24;          // [2^34, 2^37)
-  const u64 yn = ym << 6;                            // < 2^60
-  const u64 q = yn / xd, r = yn % xd;                // t in Q30, < 2^24
-  const u64 t54 = (q << 24) + ((r << 24) / xd);      // r < 2^37: r << 24 < 2^61
+  const u64 xd = static_cast<u64>(x) >> 24;      // [2^34, 2^37)
+  const u64 yn = ym << 6;                        // < 2^60
+  const u64 q = yn / xd, r = yn % xd;            // t in Q30, < 2^24
+  const u64 t54 = (q << 24) + ((r << 24) / xd);  // r < 2^37: r << 24 < 2^61
   // atan t = t − t³/3 + t⁵/5 − …: t⁵/5 < 2^-37.
-  const u64 t36 = t54 >> 18;                         // < 2^29
-  const u64 t2_36 = (t36 * t36) >> 36;               // < 2^22
-  const u64 cube54 = (t2_36 * t36) >> 18;            // t³ in Q54
+  const u64 t36 = t54 >> 18;               // < 2^29
+  const u64 t2_36 = (t36 * t36) >> 36;     // < 2^22
+  const u64 cube54 = (t2_36 * t36) >> 18;  // t³ in Q54
   const wide_t atan54 = static_cast<wide_t>(t54) - static_cast<wide_t>(cube54 / 3);
-  return z + (y >= 0 ? atan54 : -atan54) * 64;       // Q54 -> Q60
+  return z + (y >= 0 ? atan54 : -atan54) * 64;  // Q54 -> Q60
 }
 
 }  // namespace detail
@@ -190,11 +194,11 @@ constexpr SinCos sin_cos_fast(angle_t theta) {
   wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
   detail::rotation_steps<false>(x, y, z, detail::kFastIterations);
   // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
-  const wide_t z30 = round_shift_right(z, 30);      // |.| < 2^23
-  const wide_t z2_60 = z30 * z30;                            // < 2^46
-  const wide_t z2_30 = z2_60 >> 30;                          // < 2^16
-  const wide_t e60 = z2_60 / 2 - (z2_30 * z2_30) / 24;       // 1 − cos z, < 2^45
-  const wide_t s60 = z - (z2_30 * z30) / 6;                  // sin z, |.| < 2^53
+  const wide_t z30 = round_shift_right(z, 30);          // |.| < 2^23
+  const wide_t z2_60 = z30 * z30;                       // < 2^46
+  const wide_t z2_30 = z2_60 >> 30;                     // < 2^16
+  const wide_t e60 = z2_60 / 2 - (z2_30 * z2_30) / 24;  // 1 − cos z, < 2^45
+  const wide_t s60 = z - (z2_30 * z30) / 6;             // sin z, |.| < 2^53
   // x·e: Q32 × Q45 -> Q77 (< 2^62); y·s: Q31 × Q38 -> Q69 (< 2^62).
   const wide_t e45 = e60 >> 15, s38 = round_shift_right(s60, 22);
   const wide_t x32 = round_shift_right(x, 28), y32 = round_shift_right(y, 28);
@@ -241,8 +245,8 @@ template <QType T>
 constexpr Polar<T> to_polar(T x, T y) {
   const detail::Vectored v = detail::cordic_vectoring(y.raw(), x.raw());
   // magnitude raw = x_final * (1/K) / 2^(60 + shift); x_final >= 0 after vectoring.
-  const detail::U128 p =
-      detail::mul_u64(detail::magnitude(v.x_scaled), static_cast<detail::u64>(tables::cordic_gain_inv_q60));
+  const detail::U128 p = detail::mul_u64(detail::magnitude(v.x_scaled),
+                                         static_cast<detail::u64>(tables::cordic_gain_inv_q60));
   bool over = false;
   const detail::u64 m = detail::round_shr(p, 60 + v.shift, over);
   return Polar<T>{detail::from_sign_mag<T>(false, m, over), detail::angle_from_q60(v.angle_q60)};
@@ -255,7 +259,8 @@ constexpr angle_t acos_unit(q1_30 c) {
   const auto radicand = static_cast<detail::u64>((one * one) - cr * cr);
   const detail::RootResult s = detail::isqrt_shifted(radicand, 56, detail::u64{1} << 59);
   const auto s58 = static_cast<detail::wide_t>(s.root + (s.round_up ? 1u : 0u));
-  return detail::angle_from_q60(detail::cordic_vectoring(s58, cr * (detail::wide_t{1} << 28)).angle_q60);
+  return detail::angle_from_q60(
+      detail::cordic_vectoring(s58, cr * (detail::wide_t{1} << 28)).angle_q60);
 }
 
 }  // namespace tp::fx

@@ -53,13 +53,13 @@ struct RsqrtFast {
 inline RsqrtFast rsqrt_fast(detail::u64 s) {
   using detail::u64;
   int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
-  e += e & 1;                                         // ... or [2^30, 2^31) for an even e
+  e += e & 1;                                        // ... or [2^30, 2^31) for an even e
   const u64 t = e >= 0 ? s >> e : s << -e;
   u64 r = detail::rsqrt_fast_seed[static_cast<std::size_t>((t >> 24) - 64)];  // Q2.30
   for (int it = 0; it < 2; ++it) {
-    const u64 r2 = (r * r) >> 30;                 // Q.30, <= 2^32
-    const u64 tr2 = (t * r2) >> 32;               // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)
-    r = (r * ((u64{3} << 30) - tr2)) >> 31;       // r (3 − T r²) / 2, Q2.30
+    const u64 r2 = (r * r) >> 30;            // Q.30, <= 2^32
+    const u64 tr2 = (t * r2) >> 32;          // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)
+    r = (r * ((u64{3} << 30) - tr2)) >> 31;  // r (3 − T r²) / 2, Q2.30
   }
   // 1/√s = r·2^-30 · 2^-(16 + e/2) · 2^30: c·r >> (16 + e/2), >= 1 since e >= -30.
   return RsqrtFast{static_cast<std::int64_t>(r), 16 + e / 2};

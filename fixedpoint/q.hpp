@@ -178,10 +178,10 @@ constexpr T abs_sat(T a) {
 }
 
 // The formats the firmware uses most.
-using q1_14 = Q<1, 14, std::int16_t>;   // unit-vector components at 16-bit precision
-using q1_30 = Q<1, 30, std::int32_t>;   // unit-vector components at 32-bit precision
-using q15_16 = Q<15, 16, std::int32_t>; // general coordinates
-using q2_29 = Q<2, 29, std::int32_t>;   // angles in radians, |θ| <= 4 > π
+using q1_14 = Q<1, 14, std::int16_t>;    // unit-vector components at 16-bit precision
+using q1_30 = Q<1, 30, std::int32_t>;    // unit-vector components at 32-bit precision
+using q15_16 = Q<15, 16, std::int32_t>;  // general coordinates
+using q2_29 = Q<2, 29, std::int32_t>;    // angles in radians, |θ| <= 4 > π
 // A plain 64-bit integer as a Q (no fraction bits), so that integers enter div and mul_sat.
 using int_q = Q<62, 0, std::int64_t>;
 

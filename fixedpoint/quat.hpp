@@ -11,7 +11,8 @@
 //
 // Every result is an exact wide (128-bit, built from 32x32 multiplies) integer expression
 // rounded once per component: to nearest, ties away from zero, saturated to To (q.hpp).
-// Measured accuracy and the antipodal threshold: docs/ACCURACY.md and tests/fixedpoint/test_quat.cpp.
+// Measured accuracy and the antipodal threshold: docs/ACCURACY.md and
+// tests/fixedpoint/test_quat.cpp.
 #pragma once
 
 #include <bit>
@@ -136,7 +137,6 @@ constexpr Quat<To> half_turn_perpendicular(Vec3<T> f) {
   return {To::zero(), axis.x, axis.y, axis.z};
 }
 
-
 // rotation_between with the antipodal threshold as a parameter (the tests sweep it to measure
 // the crossover; everything else calls rotation_between).
 template <QType To, QType T>
@@ -153,8 +153,8 @@ constexpr Quat<To> rotation_between_with(Vec3<T> from, Vec3<T> to, int antipodal
   // 30 fractional bits already satisfy it; otherwise one halving suffices (|raw| <= 2^31).
   constexpr wide_t kRawLimit = wide_t{1} << 30;
   bool big = false;
-  for (int i = 0; i < 3; ++i) big = big || detail::abs_wide(f[i]) > kRawLimit ||
-                                  detail::abs_wide(t[i]) > kRawLimit;
+  for (int i = 0; i < 3; ++i)
+    big = big || detail::abs_wide(f[i]) > kRawLimit || detail::abs_wide(t[i]) > kRawLimit;
   if (big) {
     for (int i = 0; i < 3; ++i) {
       f[i] = round_shift_right(f[i], 1);
@@ -215,7 +215,8 @@ template <QType To, QType Tq, QType Tv>
 constexpr Vec3<To> rotate(Quat<Tq> q, Vec3<Tv> v) {
   using detail::U128;
   using detail::wide_t;
-  static_assert(Tq::frac_bits <= 30 && Tq::frac_bits >= 1, "quaternion components in Q?.30 at most");
+  static_assert(Tq::frac_bits <= 30 && Tq::frac_bits >= 1,
+                "quaternion components in Q?.30 at most");
   static_assert(Tv::int_bits + Tv::frac_bits <= 31, "vectors up to 32-bit storage");
   constexpr int fq = Tq::frac_bits;
   const wide_t w = detail::clamp_unit_raw(q.w.raw(), fq);
@@ -253,15 +254,15 @@ constexpr Quat<To> multiply(Quat<A> a, Quat<B> b) {
   };
   constexpr auto neg = [](U128 v) { return detail::neg128(v); };
   constexpr int sh = A::frac_bits + B::frac_bits - To::frac_bits;
-  return {
-      detail::round128<To>(sum4(mul_s64(aw, bw), neg(mul_s64(ax, bx)), neg(mul_s64(ay, by)),
-                                neg(mul_s64(az, bz))), sh),
-      detail::round128<To>(sum4(mul_s64(aw, bx), mul_s64(ax, bw), mul_s64(ay, bz),
-                                neg(mul_s64(az, by))), sh),
-      detail::round128<To>(sum4(mul_s64(aw, by), neg(mul_s64(ax, bz)), mul_s64(ay, bw),
-                                mul_s64(az, bx)), sh),
-      detail::round128<To>(sum4(mul_s64(aw, bz), mul_s64(ax, by), neg(mul_s64(ay, bx)),
-                                mul_s64(az, bw)), sh)};
+  return {detail::round128<To>(sum4(mul_s64(aw, bw), neg(mul_s64(ax, bx)), neg(mul_s64(ay, by)),
+                                    neg(mul_s64(az, bz))),
+                               sh),
+          detail::round128<To>(
+              sum4(mul_s64(aw, bx), mul_s64(ax, bw), mul_s64(ay, bz), neg(mul_s64(az, by))), sh),
+          detail::round128<To>(
+              sum4(mul_s64(aw, by), neg(mul_s64(ax, bz)), mul_s64(ay, bw), mul_s64(az, bx)), sh),
+          detail::round128<To>(
+              sum4(mul_s64(aw, bz), mul_s64(ax, by), neg(mul_s64(ay, bx)), mul_s64(az, bw)), sh)};
 }
 
 // (w, -x, -y, -z); saturating, so a component at T::min() becomes T::max().

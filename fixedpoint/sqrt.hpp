@@ -76,13 +76,13 @@ inline constexpr std::array<std::uint16_t, 256> isqrt_seed = [] {
 constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   if (u < (u64{1} << 16)) return isqrt_shifted(u, 0, limit);
   const int b = 64 - std::countl_zero(u);  // 17..64
-  const int sh = (b - 7) & ~1;              // even, so that top = u >> sh is in [64, 256)
+  const int sh = (b - 7) & ~1;             // even, so that top = u >> sh is in [64, 256)
   const u64 top = u >> sh;
   u64 r = (u64{isqrt_seed[static_cast<std::size_t>(top)]} << (sh / 2)) >> 8;
   if (r == 0) r = 1;
   r = (r + u / r) >> 1;
   r = (r + u / r) >> 1;
-  if (r > 0xffffffffu) r = 0xffffffffu;    // the root of any u64 is below 2^32
+  if (r > 0xffffffffu) r = 0xffffffffu;  // the root of any u64 is below 2^32
   while (r * r > u) --r;
   while (r < 0xffffffffu && (r + 1) * (r + 1) <= u) ++r;
   RootResult res;
@@ -122,10 +122,10 @@ constexpr RsqrtResult rsqrt_core(u64 u, int frac) {
   u64 r = u64{rsqrt_seed[static_cast<std::size_t>((y >> 58) - 16)]} << 48;  // Q2.14 -> Q2.62
   bool over = false;
   for (int it = 0; it < 4; ++it) {
-    const u64 r2 = round_shr(mul_u64(r, r), 64, over);    // r^2 in Q4.60 (r <= 2: r^2 <= 4)
-    const u64 e = round_shr(mul_u64(y, r2), 62, over);     // y r^2 in Q2.62, ~1
-    const u64 t = (u64{3} << 62) - e;                      // 3 - y r^2 > 0 (y r^2 < 1.1)
-    r = round_shr(mul_u64(r, t), 63, over);                // r (3 - y r^2) / 2 in Q2.62
+    const u64 r2 = round_shr(mul_u64(r, r), 64, over);  // r^2 in Q4.60 (r <= 2: r^2 <= 4)
+    const u64 e = round_shr(mul_u64(y, r2), 62, over);  // y r^2 in Q2.62, ~1
+    const u64 t = (u64{3} << 62) - e;                   // 3 - y r^2 > 0 (y r^2 < 1.1)
+    r = round_shr(mul_u64(r, t), 63, over);             // r (3 - y r^2) / 2 in Q2.62
   }
   return RsqrtResult{r, h};
 }
@@ -133,7 +133,9 @@ constexpr RsqrtResult rsqrt_core(u64 u, int frac) {
 }  // namespace detail
 
 // ⌊√u⌋ of an integer (the raw-integer root, for code between Q types).
-constexpr std::uint64_t isqrt_floor(std::uint64_t u) { return detail::isqrt_plain(u, ~std::uint64_t{0}).root; }
+constexpr std::uint64_t isqrt_floor(std::uint64_t u) {
+  return detail::isqrt_plain(u, ~std::uint64_t{0}).root;
+}
 
 template <QType To, QType From>
 constexpr To sqrt(From x) {

@@ -109,8 +109,10 @@ struct SignMag {
 constexpr SignMag exact_sum(const wide_t* terms, int count) {
   u64 pos = 0, neg = 0;
   for (int i = 0; i < count; ++i) {
-    if (terms[i] >= 0) pos += static_cast<u64>(terms[i]);
-    else neg += magnitude(terms[i]);
+    if (terms[i] >= 0)
+      pos += static_cast<u64>(terms[i]);
+    else
+      neg += magnitude(terms[i]);
   }
   return pos >= neg ? SignMag{false, pos - neg} : SignMag{true, neg - pos};
 }

@@ -36,8 +36,8 @@ fw::Mat4 to_device_matrix(const glm::dmat4& m, const std::string& what, Conversi
   fw::Mat4 out{};
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) {
-      const auto q = to_fixed<q15_16>(m[c][r], what + "[" + std::to_string(c) + "][" +
-                                                   std::to_string(r) + "]", report);
+      const auto q = to_fixed<q15_16>(
+          m[c][r], what + "[" + std::to_string(c) + "][" + std::to_string(r) + "]", report);
       if (q) out.m[c][r] = *q;
     }
   return out;
@@ -87,8 +87,8 @@ fw::Method method_from_name(std::string_view name) {
     if (m.name == name) return m.method;
   std::string valid;
   for (const auto& m : method_names()) valid += (valid.empty() ? "" : ", ") + std::string(m.name);
-  throw std::invalid_argument("unknown shading method '" + std::string(name) + "' (valid: " +
-                              valid + ")");
+  throw std::invalid_argument("unknown shading method '" + std::string(name) +
+                              "' (valid: " + valid + ")");
 }
 
 std::string_view method_name(fw::Method method) {
@@ -200,8 +200,7 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
     fw::LightCmd l;
     l.index = static_cast<std::uint32_t>(i);
     for (int c = 0; c < 3; ++c)
-      if (auto q = to_fixed<q15_16>(lights[i].colour[c], name + " colour", report))
-        l.color[c] = *q;
+      if (auto q = to_fixed<q15_16>(lights[i].colour[c], name + " colour", report)) l.color[c] = *q;
     if (lights[i].kind == LightKind::Directional) {
       l.type = fw::LightType::kDirectional;
       l.direction = unit_vector(lights[i].vector, name + " direction", report);
@@ -225,14 +224,15 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
                     scene.meshes[k].transform.matrix()};
     const std::string name = "mesh " + std::to_string(k);
     for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-      p.vertices.push_back({position(mesh.positions[v], name + " vertex " + std::to_string(v), report),
-                            unit_vector(mesh.normals[v], name + " normal " + std::to_string(v), report)});
+      p.vertices.push_back(
+          {position(mesh.positions[v], name + " vertex " + std::to_string(v), report),
+           unit_vector(mesh.normals[v], name + " normal " + std::to_string(v), report)});
     for (const auto& t : mesh.triangles)
       for (std::uint32_t i : t) p.indices.push_back(base + i);
     p.meshes.push_back(range);
   }
-  if (!report.ok()) reject(scene, "", "does not fit the device's fixed-point formats:\n" +
-                                          report.to_string());
+  if (!report.ok())
+    reject(scene, "", "does not fit the device's fixed-point formats:\n" + report.to_string());
   p.capacity = {static_cast<std::uint32_t>(p.vertices.size()),
                 static_cast<std::uint32_t>(p.indices.size())};
   return p;
@@ -241,8 +241,8 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
 void DeviceRenderer::apply(const Scene& scene, const Prepared& p) {
   const auto step = [&](fw::Error e, const char* what) {
     if (e != fw::Error::kOk)
-      reject(scene, "", std::string("the device rejected ") + what + ": " +
-                            std::string(error_name(e)));
+      reject(scene, "",
+             std::string("the device rejected ") + what + ": " + std::string(error_name(e)));
   };
   step(device_.set_viewport(p.viewport), "the viewport");
   step(device_.set_buffer_capacity(p.capacity), "the buffer sizes");
@@ -289,8 +289,8 @@ fw::Mat4 DeviceRenderer::modelview_for(const Scene& scene, const MeshRange& mesh
 
 void DeviceRenderer::check(fw::Error e, const char* what) const {
   if (e != fw::Error::kOk)
-    throw std::runtime_error(std::string("device: ") + what + " failed: " +
-                             std::string(error_name(e)));
+    throw std::runtime_error(std::string("device: ") + what +
+                             " failed: " + std::string(error_name(e)));
 }
 
 DeviceFrame DeviceRenderer::render(double model_rotation_radians) {

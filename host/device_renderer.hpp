@@ -34,9 +34,9 @@ struct DeviceFrame {
 
 struct ReferenceFrame {
   int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;      // round(255 · clamped double Blinn-Phong)
+  std::vector<std::uint8_t> rgb;  // round(255 · clamped double Blinn-Phong)
   std::vector<std::uint8_t> covered;
-  FloatImage linear;                  // the unclamped double intensities (as float)
+  FloatImage linear;  // the unclamped double intensities (as float)
   Image8 image() const;
 };
 

@@ -27,14 +27,16 @@ std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type
   w = spec.width;
   h = spec.height;
   const int nc = spec.nchannels;
-  std::vector<T> all(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(nc));
+  std::vector<T> all(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
+                     static_cast<std::size_t>(nc));
   if (!in->read_image(0, 0, 0, nc, type, all.data()))
     throw ImageIoError("cannot read " + file.string() + ": " + in->geterror());
   in->close();
   std::vector<T> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
   for (std::size_t p = 0; p < rgb.size() / 3; ++p)
     for (std::size_t k = 0; k < 3; ++k)
-      rgb[3 * p + k] = all[p * static_cast<std::size_t>(nc) + std::min<std::size_t>(k, static_cast<std::size_t>(nc) - 1)];
+      rgb[3 * p + k] = all[p * static_cast<std::size_t>(nc) +
+                           std::min<std::size_t>(k, static_cast<std::size_t>(nc) - 1)];
   return rgb;
 }
 

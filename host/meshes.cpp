@@ -1,4 +1,5 @@
-// Sphere-like test meshes of the papers (scenes/README.md, "Meshes"), the single triangle, OBJ loading.
+// Sphere-like test meshes of the papers (scenes/README.md, "Meshes"), the single triangle, OBJ
+// loading.
 #include "host/meshes.hpp"
 
 #include <charconv>
@@ -75,8 +76,8 @@ Mesh uv_sphere(int slices, int stacks) {
     const double theta = pi * i / stacks;  // polar angle from +y
     for (int k = 0; k < slices; ++k) {
       const double phi = 2 * pi * k / slices;
-      add_unit_vertex(m, {std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi)});
+      add_unit_vertex(
+          m, {std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)});
     }
   }
   const std::uint32_t bottom = add_unit_vertex(m, {0, -1, 0});
@@ -102,8 +103,8 @@ Mesh coarse_sphere_30() {
     const double theta = pi * (i + 1) / 4;  // 45°, 90°, 135° from +y
     for (int k = 0; k < 5; ++k) {
       const double phi = 2 * pi * (k + 0.5 * i) / 5;  // each ring turned 36° further
-      add_unit_vertex(m, {std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi)});
+      add_unit_vertex(
+          m, {std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)});
     }
   }
   const std::uint32_t bottom = add_unit_vertex(m, {0, -1, 0});
@@ -123,7 +124,8 @@ Mesh coarse_sphere_30() {
 Mesh big_triangle() {
   Mesh m;
   m.positions = {{-1, -0.9, 0}, {1, -0.9, 0}, {0, 1, 0}};
-  for (const auto& p : m.positions) m.normals.push_back(glm::normalize(0.6 * p + glm::dvec3(0, 0, 1)));
+  for (const auto& p : m.positions)
+    m.normals.push_back(glm::normalize(0.6 * p + glm::dvec3(0, 0, 1)));
   m.triangles = {{0, 1, 2}};  // CCW seen from +z
   return m;
 }
@@ -170,8 +172,9 @@ void check_obj_numbers(const std::filesystem::path& file) {
       const auto [ptr, ec] = std::from_chars(begin, end, value);
       if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
         const std::string field = k < 4 ? kFields[k] : "value " + std::to_string(k + 1);
-        throw MeshError("malformed OBJ " + file.string() + ":" + std::to_string(number) + ": " + record +
-                        " " + field + " '" + token.substr(0, 32) + "' is not a finite number");
+        throw MeshError("malformed OBJ " + file.string() + ":" + std::to_string(number) + ": " +
+                        record + " " + field + " '" + token.substr(0, 32) +
+                        "' is not a finite number");
       }
     }
   }
@@ -184,7 +187,8 @@ Mesh load_obj(const std::filesystem::path& file) {
   cfg.triangulate = true;
   cfg.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!std::filesystem::is_regular_file(file)) throw MeshError("mesh file not found: " + file.string());
+  if (!std::filesystem::is_regular_file(file))
+    throw MeshError("mesh file not found: " + file.string());
   check_obj_numbers(file);
   if (!reader.ParseFromFile(file.string(), cfg))
     throw MeshError("malformed OBJ " + file.string() + ": " + reader.Error());
@@ -210,12 +214,14 @@ Mesh load_obj(const std::filesystem::path& file) {
         auto it = index.find(key);
         if (it == index.end()) {
           const auto vi = static_cast<std::size_t>(3 * id.vertex_index);
-          m.positions.emplace_back(attrib.vertices[vi], attrib.vertices[vi + 1], attrib.vertices[vi + 2]);
+          m.positions.emplace_back(attrib.vertices[vi], attrib.vertices[vi + 1],
+                                   attrib.vertices[vi + 2]);
           glm::dvec3 n(0, 0, 1);
           if (id.normal_index >= 0) {
             const auto ni = static_cast<std::size_t>(3 * id.normal_index);
             n = glm::dvec3(attrib.normals[ni], attrib.normals[ni + 1], attrib.normals[ni + 2]);
-            if (!(glm::length(n) > 0)) throw MeshError("malformed OBJ " + file.string() + ": zero normal");
+            if (!(glm::length(n) > 0))
+              throw MeshError("malformed OBJ " + file.string() + ": zero normal");
             n = glm::normalize(n);
           }
           m.normals.push_back(n);

@@ -41,8 +41,8 @@ Comparison compare(const Image8& ref, const Mask& mref, const Image8& ev, const 
   c.color_correctness = 1 - static_cast<double>(sum_abs) / (255.0 * samples);  // eq. 6.1
   c.mean_abs = static_cast<double>(sum_abs) / samples;
   const double mse = sum_sq / samples;
-  c.psnr_db = mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse)
-                      : std::numeric_limits<double>::infinity();
+  c.psnr_db =
+      mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : std::numeric_limits<double>::infinity();
   return c;
 }
 

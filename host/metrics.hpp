@@ -1,5 +1,6 @@
-// Error measures between a reference image and an evaluated one (Vlasic's thesis, ch. 6: colour correctness, eq. 6.1; docs/RESULTS.md).
-// All are taken over the pixels covered in both images; background pixels are excluded.
+// Error measures between a reference image and an evaluated one (Vlasic's thesis, ch. 6: colour
+// correctness, eq. 6.1; docs/RESULTS.md). All are taken over the pixels covered in both images;
+// background pixels are excluded.
 #pragma once
 
 #include <optional>
@@ -12,13 +13,13 @@
 namespace tp::host {
 
 struct Comparison {
-  long long covered_both = 0;     // N of eq. 6.1
-  long long only_reference = 0;   // covered in the reference, not in the evaluated image
+  long long covered_both = 0;    // N of eq. 6.1
+  long long only_reference = 0;  // covered in the reference, not in the evaluated image
   long long only_evaluated = 0;
-  double color_correctness = 1;   // Vlasic eq. 6.1: 1 − Σ(|ΔR|+|ΔG|+|ΔB|)/(3·255·N)
-  double psnr_db = 0;             // 10·log10(255²/MSE), MSE over channels; +inf if identical
-  double mean_abs = 0;            // mean |Δ| per channel, 8-bit levels
-  int max_abs = 0;                // max |Δ| over channels, 8-bit levels
+  double color_correctness = 1;  // Vlasic eq. 6.1: 1 − Σ(|ΔR|+|ΔG|+|ΔB|)/(3·255·N)
+  double psnr_db = 0;            // 10·log10(255²/MSE), MSE over channels; +inf if identical
+  double mean_abs = 0;           // mean |Δ| per channel, 8-bit levels
+  int max_abs = 0;               // max |Δ| over channels, 8-bit levels
 };
 
 // Precondition: same size; masks have one entry per pixel (nonzero = covered).

@@ -55,8 +55,12 @@ ScreenVertex to_screen(const ClipVertex& v, const FrameSetup& f) {
   const glm::dvec3 ndc = glm::dvec3(v.clip) / v.clip.w;
   const double sx = (ndc.x + 1) / 2 * f.width;  // conventions: viewport
   const double sy = (1 - ndc.y) / 2 * f.height;
-  return {std::clamp(snap16(sx), -kGuard, kGuard), std::clamp(snap16(sy), -kGuard, kGuard),
-          ndc.z, 1 / v.clip.w, v.eye, v.normal};
+  return {std::clamp(snap16(sx), -kGuard, kGuard),
+          std::clamp(snap16(sy), -kGuard, kGuard),
+          ndc.z,
+          1 / v.clip.w,
+          v.eye,
+          v.normal};
 }
 
 // Edge a -> b as E(p) = (bx−ax)(py−ay) − (by−ay)(px−ax), in 1/16² pixel units.
@@ -88,8 +92,14 @@ glm::dvec3 angular_normal(const ScreenVertex* v[3], double cx, double cy) {
     const double t = (cy - ay) / (by - ay);
     const double x = a.x16 / 16.0 + t * (b.x16 - a.x16) / 16.0;
     const glm::dvec3 n = slerp(glm::normalize(a.normal), glm::normalize(b.normal), t);
-    if (!any || x < xl) { xl = x; nl = n; }
-    if (!any || x > xr) { xr = x; nr = n; }
+    if (!any || x < xl) {
+      xl = x;
+      nl = n;
+    }
+    if (!any || x > xr) {
+      xr = x;
+      nr = n;
+    }
     any = true;
   }
   if (!any) return glm::normalize(v[0]->normal);
@@ -253,8 +263,8 @@ ReferenceImage render_reference(const FrameSetup& f, const std::vector<DrawMesh>
       std::vector<ClipVertex> poly;
       for (auto vi : t) {
         const glm::dvec3 eye = glm::dvec3(dm.model_view * glm::dvec4(dm.mesh->positions[vi], 1));
-        poly.push_back({f.projection * glm::dvec4(eye, 1), eye,
-                        glm::normalize(nmat * dm.mesh->normals[vi])});
+        poly.push_back(
+            {f.projection * glm::dvec4(eye, 1), eye, glm::normalize(nmat * dm.mesh->normals[vi])});
       }
       poly = clip_near(std::move(poly));
       if (poly.size() < 3) continue;

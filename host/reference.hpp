@@ -1,11 +1,12 @@
-// The double-precision reference renderer (docs/CONVENTIONS.md, "Shared contract"): same camera, clipping, snapping and
-// coverage as the device (docs/CONVENTIONS.md), exact per-pixel Blinn-Phong.
+// The double-precision reference renderer (docs/CONVENTIONS.md, "Shared contract"): same camera,
+// clipping, snapping and coverage as the device (docs/CONVENTIONS.md), exact per-pixel Blinn-Phong.
 //
 // Two interpolation schemes for the normal:
 //  - Phong: N, and the eye-space position P, interpolated perspective-correctly (hyperbolic
 //    barycentrics from the snapped screen vertices), N renormalised per pixel; true per-pixel
 //    L = normalize(light − P) and V = normalize(−P) (V = (0, 0, 1) for an orthographic eye).
-//  - Angular: N by slerp, the way the Kuijk-Blake device interpolates directions (docs/KUIJK-BLAKE.md).
+//  - Angular: N by slerp, the way the Kuijk-Blake device interpolates directions
+//  (docs/KUIJK-BLAKE.md).
 //    Precisely: for the pixel centre (x, y), take the scanline through y; where it crosses the
 //    triangle's edges, N_edge = slerp(N_a, N_b, t) with t = (y − y_a)/(y_b − y_a) the
 //    screen-linear fraction along the edge (a, b its snapped screen vertices); of the crossings
@@ -50,12 +51,12 @@ struct FrameSetup {
 };
 
 struct ReferenceImage {
-  FloatImage linear;   // unclamped intensities
-  FloatImage clamped;  // clamped to [0, 1]
-  Image8 rgb8;         // round(255 · clamped)
-  Mask mask;           // 1 where some triangle wrote the pixel
-  std::vector<double> depth;                // NDC z of the written pixel (1 = cleared)
-  std::vector<std::uint16_t> coverage;      // how many triangles covered the pixel centre
+  FloatImage linear;                    // unclamped intensities
+  FloatImage clamped;                   // clamped to [0, 1]
+  Image8 rgb8;                          // round(255 · clamped)
+  Mask mask;                            // 1 where some triangle wrote the pixel
+  std::vector<double> depth;            // NDC z of the written pixel (1 = cleared)
+  std::vector<std::uint16_t> coverage;  // how many triangles covered the pixel centre
 };
 
 // Frame setup of a scene (resolution overridable with width/height > 0) and its meshes.

@@ -16,7 +16,10 @@ using nlohmann::json;
 SceneError::SceneError(std::string file, int line, std::string path, std::string problem)
     : std::runtime_error(file + ":" + std::to_string(line) + ": " +
                          (path.empty() ? std::string() : path + ": ") + problem),
-      file_(std::move(file)), line_(line), path_(std::move(path)), problem_(std::move(problem)) {}
+      file_(std::move(file)),
+      line_(line),
+      path_(std::move(path)),
+      problem_(std::move(problem)) {}
 
 namespace {
 
@@ -59,7 +62,8 @@ struct Reader {
   }
 
   int integer(const json& j, const std::string& path, int lo, int hi) const {
-    if (!j.is_number_integer()) fail(path, "expected an integer, got " + std::string(j.type_name()));
+    if (!j.is_number_integer())
+      fail(path, "expected an integer, got " + std::string(j.type_name()));
     const auto v = j.get<long long>();
     if (v < lo || v > hi)
       fail(path, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
@@ -226,8 +230,9 @@ MeshSpec read_mesh(const Reader& r, const json& j, const std::string& p) {
 Scene read_scene(const Reader& r, const json& j) {
   Scene s;
   s.file = r.file;
-  r.keys(j, "", {"name", "resolution", "camera", "lights", "material", "meshes", "method",
-                 "background", "cull"},
+  r.keys(j, "",
+         {"name", "resolution", "camera", "lights", "material", "meshes", "method", "background",
+          "cull"},
          {"camera", "lights", "meshes"});
   if (j.contains("name")) s.name = r.string(j["name"], "/name");
   if (j.contains("resolution")) {
@@ -264,8 +269,8 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
   struct Frame {
     bool object = true;
     std::set<std::string> keys;
-    std::string key;   // current key (objects)
-    long index = -1;   // current element (arrays)
+    std::string key;  // current key (objects)
+    long index = -1;  // current element (arrays)
   };
   std::vector<Frame> stack;
   const auto path = [&stack](std::size_t upto) {
@@ -285,9 +290,7 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
         stack.push_back({event == json::parse_event_t::object_start, {}, {}, -1});
         break;
       case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        stack.pop_back();
-        break;
+      case json::parse_event_t::array_end: stack.pop_back(); break;
       case json::parse_event_t::key: {
         Frame& top = stack.back();
         top.key = parsed.get<std::string>();
@@ -305,9 +308,7 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
         }
         break;
       }
-      case json::parse_event_t::value:
-        enter_element();
-        break;
+      case json::parse_event_t::value: enter_element(); break;
     }
     return true;
   };
@@ -323,12 +324,16 @@ void reject_deep_nesting(std::string_view text, const std::string& file) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
+    if (c == '"')
+      in_string = true;
     else if (c == '[' || c == '{') {
       if (++depth > kMaxSceneNesting)
         throw SceneError(file, line_of_offset(text, i), "",
@@ -351,7 +356,8 @@ Scene parse_scene(std::string_view text, const std::string& file,
   } catch (const json::parse_error& e) {
     // e.byte is 1-based and points just past the offending character.
     const std::size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    throw SceneError(file, line_of_offset(text, at), "", std::string("malformed JSON: ") + e.what());
+    throw SceneError(file, line_of_offset(text, at), "",
+                     std::string("malformed JSON: ") + e.what());
   } catch (const json::exception& e) {
     // E.g. out_of_range 406 "number overflow parsing '1e999'": no position, but the message
     // quotes the offending token; its first occurrence gives the line.

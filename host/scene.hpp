@@ -34,7 +34,8 @@ class SceneError : public std::runtime_error {
   std::string problem_;
 };
 
-inline constexpr int kMaxLights = 16;  // the device has 16 light slots (docs/CONVENTIONS.md, "Limits")
+inline constexpr int kMaxLights =
+    16;  // the device has 16 light slots (docs/CONVENTIONS.md, "Limits")
 // JSON nesting a scene file may use (scenes need 5 levels): deeper files are refused before
 // they are parsed, because the JSON library recurses per level.
 inline constexpr int kMaxSceneNesting = 64;
@@ -71,7 +72,7 @@ struct Transform {
   glm::dvec3 translate{0, 0, 0};
   glm::dvec3 rotate_axis{0, 1, 0};
   double rotate_deg = 0;
-  double scale = 1;  // uniform only: normals then transform by the upper 3x3 (conventions)
+  double scale = 1;           // uniform only: normals then transform by the upper 3x3 (conventions)
   glm::dmat4 matrix() const;  // T · R · S
 };
 

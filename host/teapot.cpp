@@ -75,8 +75,8 @@ class Welder {
  public:
   explicit Welder(Mesh& m) : m_(m) {}
   std::uint32_t add(glm::dvec3 p, glm::dvec3 n) {
-    const auto key = std::make_tuple(std::llround(p.x * 1e9), std::llround(p.y * 1e9),
-                                     std::llround(p.z * 1e9));
+    const auto key =
+        std::make_tuple(std::llround(p.x * 1e9), std::llround(p.y * 1e9), std::llround(p.z * 1e9));
     auto& same = at_[key];
     for (std::uint32_t i : same) {
       if (glm::length(m_.normals[i] - n) < 1e-6) return i;
@@ -111,9 +111,8 @@ Mesh teapot(int tess) {
     auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(i * (tess + 1) + j)]; };
     for (int i = 0; i < tess; ++i)
       for (int j = 0; j < tess; ++j) {
-        const std::array<std::uint32_t, 3> tris[2] = {
-            {at(i, j), at(i + 1, j), at(i + 1, j + 1)},
-            {at(i, j), at(i + 1, j + 1), at(i, j + 1)}};
+        const std::array<std::uint32_t, 3> tris[2] = {{at(i, j), at(i + 1, j), at(i + 1, j + 1)},
+                                                      {at(i, j), at(i + 1, j + 1), at(i, j + 1)}};
         for (auto t : tris) {
           const glm::dvec3 g = glm::cross(m.positions[t[1]] - m.positions[t[0]],
                                           m.positions[t[2]] - m.positions[t[0]]);

@@ -46,8 +46,8 @@ Scene load(const SceneOptions& o) {
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;
-    if (std::sscanf(o.size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-        h <= 0)
+    if (std::sscanf(o.size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
+        w <= 0 || h <= 0)
       throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, got '" + o.size + "'");
     s.width = w;
     s.height = h;
@@ -108,14 +108,18 @@ int run_reference(const SceneOptions& o, const std::string& out, const std::stri
 
 // The n pixels with the largest channel difference, covered in both images.
 void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& mb, int n) {
-  struct Px { int d, x, y; };
+  struct Px {
+    int d, x, y;
+  };
   std::vector<Px> px;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) + static_cast<std::size_t>(x);
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) +
+                            static_cast<std::size_t>(x);
       if (!ma[i] || !mb[i]) continue;
       int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int{a.at(x, y)[c]} - int{b.at(x, y)[c]}));
+      for (int c = 0; c < 3; ++c)
+        d = std::max(d, std::abs(int{a.at(x, y)[c]} - int{b.at(x, y)[c]}));
       if (d > 0) px.push_back({d, x, y});
     }
   const auto count = std::min<std::size_t>(px.size(), static_cast<std::size_t>(n));
@@ -125,8 +129,9 @@ void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& m
   for (std::size_t k = 0; k < count; ++k) {
     const auto* pa = a.at(px[k].x, px[k].y);
     const auto* pb = b.at(px[k].x, px[k].y);
-    std::cout << "  " << px[k].x << ", " << px[k].y << ": " << int{pa[0]} << " " << int{pa[1]} << " "
-              << int{pa[2]} << " / " << int{pb[0]} << " " << int{pb[1]} << " " << int{pb[2]} << "\n";
+    std::cout << "  " << px[k].x << ", " << px[k].y << ": " << int{pa[0]} << " " << int{pa[1]}
+              << " " << int{pa[2]} << " / " << int{pb[0]} << " " << int{pb[1]} << " " << int{pb[2]}
+              << "\n";
   }
 }
 
@@ -190,13 +195,15 @@ int main(int argc, char** argv) {
   std::string cmp_a, cmp_b, cmp_diff;
   std::optional<int> cmp_row;
   int cmp_worst = 0;
-  auto* cmp = app.add_subcommand("compare", "error metrics of SECOND against FIRST (the reference)");
+  auto* cmp =
+      app.add_subcommand("compare", "error metrics of SECOND against FIRST (the reference)");
   cmp->add_option("first", cmp_a, "reference image")->required()->check(CLI::ExistingFile);
   cmp->add_option("second", cmp_b, "evaluated image")->required()->check(CLI::ExistingFile);
   cmp->add_option("--diff", cmp_diff, "write the gamma-enhanced difference image (eq. 6.2)");
   cmp->add_option("--row", cmp_row, "print the illumination curve of this row (eq. 6.3) as CSV");
 
-  cmp->add_option("--worst", cmp_worst, "list the N pixels that differ most")->check(CLI::NonNegativeNumber);
+  cmp->add_option("--worst", cmp_worst, "list the N pixels that differ most")
+      ->check(CLI::NonNegativeNumber);
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 

@@ -22,8 +22,8 @@ namespace tp::host {
 struct ConversionIssue {
   std::string quantity;  // e.g. "light 2 position.x"
   double value;
-  double min, max;       // the representable range of the target format
-  std::string format;    // e.g. "Q15.16"
+  double min, max;     // the representable range of the target format
+  std::string format;  // e.g. "Q15.16"
 
   std::string message() const {
     std::ostringstream s;

@@ -75,7 +75,8 @@ Result get_int(const json& j, const char* k, long lo, long hi, std::optional<int
   return Result::success();
 }
 
-Result get_vec3(const json& j, const char* k, double lo, double hi, std::optional<std::array<double, 3>>& out) {
+Result get_vec3(const json& j, const char* k, double lo, double hi,
+                std::optional<std::array<double, 3>>& out) {
   if (!j.contains(k)) return Result::success();
   const json& v = j[k];
   if (!v.is_array() || v.size() != 3) return field_error(k, "must be an array of 3 numbers");
@@ -84,7 +85,8 @@ Result get_vec3(const json& j, const char* k, double lo, double hi, std::optiona
     if (!v[i].is_number()) return field_error(k, "must be an array of 3 numbers");
     a[i] = v[i].get<double>();
     if (!std::isfinite(a[i]) || a[i] < lo || a[i] > hi)
-      return field_error(k, "component out of range [" + json(lo).dump() + ", " + json(hi).dump() + "]");
+      return field_error(
+          k, "component out of range [" + json(lo).dump() + ", " + json(hi).dump() + "]");
   }
   out = a;
   return Result::success();
@@ -112,10 +114,12 @@ Result get_kind(const json& j, Command& c) {
   if (!j["kind"].is_string()) return Result::failure("'kind' must be a string");
   const auto k = j["kind"].get<std::string>();
   if (c.type == ControlType::ack) {
-    if (k != "device" && k != "reference") return Result::failure("'kind' must be \"device\" or \"reference\"");
+    if (k != "device" && k != "reference")
+      return Result::failure("'kind' must be \"device\" or \"reference\"");
     c.ack_kind = k == "reference" ? 1 : 0;
   } else {
-    if (k != "directional" && k != "point") return Result::failure("'kind' must be \"directional\" or \"point\"");
+    if (k != "directional" && k != "point")
+      return Result::failure("'kind' must be \"directional\" or \"point\"");
     c.point = k == "point";
   }
   return Result::success();
@@ -151,17 +155,21 @@ Result check_combination(const json& j, Command& c) {
     }
     case ControlType::set_light: {
       if (Result r = need("index"); !r.ok()) return r;
-      if (!c.point && !c.vector && !c.color) return Result::failure("set_light needs 'kind', 'vector' or 'color'");
+      if (!c.point && !c.vector && !c.color)
+        return Result::failure("set_light needs 'kind', 'vector' or 'color'");
       return Result::success();
     }
     case ControlType::set_material:
-      if (!c.ka && !c.kd && !c.ks && !c.color) return Result::failure("set_material needs 'ka', 'kd', 'ks' or 'color'");
+      if (!c.ka && !c.kd && !c.ks && !c.color)
+        return Result::failure("set_material needs 'ka', 'kd', 'ks' or 'color'");
       return Result::success();
     case ControlType::set_exponent: {
       const bool has_n = c.n.has_value(), has_ab = c.a.has_value() || c.b.has_value();
-      if (has_n == has_ab) return Result::failure("set_exponent needs either 'n' or both 'a' and 'b'");
+      if (has_n == has_ab)
+        return Result::failure("set_exponent needs either 'n' or both 'a' and 'b'");
       if (has_ab && (!c.a || !c.b)) return Result::failure("set_exponent needs both 'a' and 'b'");
-      if (has_ab && !(*c.a < *c.b)) return Result::failure("'a' must be less than 'b' (Kuijk-Blake f: a < b)");
+      if (has_ab && !(*c.a < *c.b))
+        return Result::failure("'a' must be less than 'b' (Kuijk-Blake f: a < b)");
       return Result::success();
     }
     case ControlType::ack: {
@@ -224,7 +232,8 @@ ParseResult parse_control(const std::string& text) {
   if (c.type == ControlType::unknown)
     return {std::nullopt, "unknown message type '" + type_name.substr(0, 64) + "'"};
   for (const auto& [k, v] : j.items())
-    if (k != "type" && !allows(c.type, k)) return {std::nullopt, "unknown field '" + k.substr(0, 64) + "'"};
+    if (k != "type" && !allows(c.type, k))
+      return {std::nullopt, "unknown field '" + k.substr(0, 64) + "'"};
   if (Result r = read_fields(j, c); !r.ok()) return {std::nullopt, r.message()};
   return {std::move(c), ""};
 }
@@ -258,7 +267,8 @@ Result edit_lights(const Command& c, ViewSettings& s) {
   if (c.point) l.point = *c.point;
   if (c.vector) l.vector = *c.vector;
   if (c.color) l.color = *c.color;
-  if (directional_zero(l.point, l.vector)) return Result::failure("'vector' of a directional light must not be zero");
+  if (directional_zero(l.point, l.vector))
+    return Result::failure("'vector' of a directional light must not be zero");
   return Result::success();
 }
 
@@ -300,7 +310,8 @@ Result apply_control(const Command& c, FrameSource& src, LoopFlags& flags, bool&
     case ControlType::ack:
     case ControlType::get_state:
     case ControlType::unknown:
-      return Result::failure("message type '" + std::string(to_string(c.type)) + "' is not a setting");
+      return Result::failure("message type '" + std::string(to_string(c.type)) +
+                             "' is not a setting");
   }
   return src.apply(s);
 }

@@ -25,7 +25,8 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
   s.ks = m.ks;
   s.color = {m.colour.x, m.colour.y, m.colour.z};
   for (const auto& l : sc.lights)
-    s.lights.push_back({l.kind == host::LightKind::Point, {l.vector.x, l.vector.y, l.vector.z},
+    s.lights.push_back({l.kind == host::LightKind::Point,
+                        {l.vector.x, l.vector.y, l.vector.z},
                         {l.colour.x, l.colour.y, l.colour.z}});
   s.width = sc.width;
   s.height = sc.height;
@@ -50,7 +51,8 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
   sc.lights.clear();
   for (const auto& l : s.lights)
     sc.lights.push_back({l.point ? host::LightKind::Point : host::LightKind::Directional,
-                         {l.vector[0], l.vector[1], l.vector[2]}, {l.color[0], l.color[1], l.color[2]}});
+                         {l.vector[0], l.vector[1], l.vector[2]},
+                         {l.color[0], l.color[1], l.color[2]}});
   sc.width = s.width;
   sc.height = s.height;
   return sc;
@@ -58,11 +60,12 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
 
 }  // namespace
 
-DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width, int height,
-                           const std::string& method)
+DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width,
+                           int height, const std::string& method)
     : dir_(std::move(scenes_dir)) {
   for (const auto& e : std::filesystem::directory_iterator(dir_))
-    if (e.is_regular_file() && e.path().extension() == ".json") scene_names_.push_back(e.path().stem().string());
+    if (e.is_regular_file() && e.path().extension() == ".json")
+      scene_names_.push_back(e.path().stem().string());
   std::sort(scene_names_.begin(), scene_names_.end());
   if (std::find(scene_names_.begin(), scene_names_.end(), scene) == scene_names_.end())
     throw std::runtime_error("no scene '" + scene + "' in " + dir_.string());
@@ -92,7 +95,8 @@ Result DeviceSource::install(host::Scene sc, const std::string& name) {
 }
 
 Result DeviceSource::apply(const ViewSettings& s) {
-  if (s.lights.size() > fw::kMaxLights) return Result::failure("too many lights");  // the device's slots
+  if (s.lights.size() > fw::kMaxLights)
+    return Result::failure("too many lights");  // the device's slots
   return install(with_settings(*scene_, s), s.scene);
 }
 

@@ -10,7 +10,8 @@
 namespace tp::server {
 
 void fail(boost::beast::error_code ec, char const* what) {
-  if (!ec || ec == boost::asio::error::operation_aborted || ec == boost::beast::websocket::error::closed ||
+  if (!ec || ec == boost::asio::error::operation_aborted ||
+      ec == boost::beast::websocket::error::closed ||
       ec == boost::beast::http::error::end_of_stream)
     return;
   // One write per line: with several I/O threads, lines from different sessions do not mix.

@@ -15,8 +15,8 @@
 namespace tp::server {
 
 struct LightSetting {
-  bool point = false;                       // directional: unit direction TOWARD the light (eye space)
-  std::array<double, 3> vector{0, 0, 1};    // point: position (eye space)
+  bool point = false;  // directional: unit direction TOWARD the light (eye space)
+  std::array<double, 3> vector{0, 0, 1};  // point: position (eye space)
   std::array<double, 3> color{1, 1, 1};
 };
 

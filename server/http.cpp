@@ -32,7 +32,8 @@ bool HostPolicy::origin_ok(std::string_view origin) const {
 }
 
 Response route(const Request& req, const HostPolicy& policy) {
-  if (!policy.host_ok(req[http::field::host])) return plain(req, http::status::forbidden, "forbidden host\n");
+  if (!policy.host_ok(req[http::field::host]))
+    return plain(req, http::status::forbidden, "forbidden host\n");
   if (req.method() != http::verb::get && req.method() != http::verb::head) {
     auto res = plain(req, http::status::method_not_allowed, "GET only\n");
     res.set(http::field::allow, "GET, HEAD");
@@ -49,7 +50,8 @@ Response route(const Request& req, const HostPolicy& policy) {
     res.set(http::field::cache_control, "no-store");
     // The page runs only its own scripts and talks only to this server.
     res.set("Content-Security-Policy",
-            "default-src 'self'; connect-src 'self' ws: ; img-src 'self' data:; frame-ancestors 'none'");
+            "default-src 'self'; connect-src 'self' ws: ; img-src 'self' data:; frame-ancestors "
+            "'none'");
     res.set("X-Content-Type-Options", "nosniff");
     res.keep_alive(req.keep_alive());
     if (req.method() == http::verb::get) res.body() = std::string(a.body);

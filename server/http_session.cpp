@@ -10,7 +10,8 @@ HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerContext& ctx)
     : stream_(std::move(socket)), ctx_(ctx) {}
 
 void HttpSession::run() {
-  net::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::do_read, shared_from_this()));
+  net::dispatch(stream_.get_executor(),
+                beast::bind_front_handler(&HttpSession::do_read, shared_from_this()));
 }
 
 void HttpSession::do_read() {
@@ -44,7 +45,8 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
       send(std::move(res));
       return;
     }
-    std::make_shared<WsSession>(std::move(stream_), ctx_.hub, ctx_.loop, ctx_.limits)->run(std::move(req));
+    std::make_shared<WsSession>(std::move(stream_), ctx_.hub, ctx_.loop, ctx_.limits)
+        ->run(std::move(req));
     return;
   }
   send(route(req, ctx_.policy));

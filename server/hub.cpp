@@ -4,7 +4,6 @@
 
 namespace tp::server {
 
-
 void Hub::join(const std::shared_ptr<WsSession>& s) {
   FramePtr dev, ref;
   TextPtr state;

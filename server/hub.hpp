@@ -17,10 +17,10 @@ using TextPtr = std::shared_ptr<const std::string>;
 class Hub {
  public:
   void join(const std::shared_ptr<WsSession>& s);
-  void publish_frame(FramePtr f);        // device or reference frame
+  void publish_frame(FramePtr f);  // device or reference frame
   void broadcast_text(TextPtr msg, bool droppable);
-  void set_state(TextPtr state);         // the latest "state" message, also sent on join
-  void close_all();                      // going away (shutdown)
+  void set_state(TextPtr state);  // the latest "state" message, also sent on join
+  void close_all();               // going away (shutdown)
   std::size_t clients();
   FramePtr latest_device();
 

@@ -26,21 +26,32 @@ int main(int argc, char** argv) {
   double max_fps = 60, deadline_s = 5;
   int width = 0, height = 0;
   app.add_option("--bind", opt.bind, "address to listen on")->capture_default_str();
-  app.add_option("--allow-host", opt.allow_hosts,
-                 "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
+  app.add_option(
+      "--allow-host", opt.allow_hosts,
+      "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
-  app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")->capture_default_str();
+  app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")
+      ->capture_default_str();
   app.add_option("--method", method, "shading method to start with (empty: the scene file's)")
       ->capture_default_str();
   app.add_option("--source", source, "frame source: device or pattern (transport tests)")
-      ->check(CLI::IsMember({"device", "pattern"}))->capture_default_str();
-  app.add_option("--width", width, "initial width (default: the scene's)")->check(CLI::Range(16, 2048));
-  app.add_option("--height", height, "initial height (default: the scene's)")->check(CLI::Range(16, 2048));
-  app.add_option("--max-fps", max_fps, "render-loop pacing cap")->check(CLI::Range(1.0, 1000.0))->capture_default_str();
-  app.add_option("--deadline", deadline_s, "seconds a client may leave a write or a frame unacknowledged")
-      ->check(CLI::Range(0.2, 600.0))->capture_default_str();
-  app.add_option("--io-threads", opt.io_threads, "I/O threads")->check(CLI::Range(1, 16))->capture_default_str();
+      ->check(CLI::IsMember({"device", "pattern"}))
+      ->capture_default_str();
+  app.add_option("--width", width, "initial width (default: the scene's)")
+      ->check(CLI::Range(16, 2048));
+  app.add_option("--height", height, "initial height (default: the scene's)")
+      ->check(CLI::Range(16, 2048));
+  app.add_option("--max-fps", max_fps, "render-loop pacing cap")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--deadline", deadline_s,
+                 "seconds a client may leave a write or a frame unacknowledged")
+      ->check(CLI::Range(0.2, 600.0))
+      ->capture_default_str();
+  app.add_option("--io-threads", opt.io_threads, "I/O threads")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   opt.loop.max_fps = max_fps;
   opt.limits.deadline = std::chrono::milliseconds(static_cast<long>(deadline_s * 1000));

@@ -17,7 +17,8 @@ std::vector<std::string> PatternSource::scenes() const { return {"pattern"}; }
 
 Result PatternSource::apply(const ViewSettings& s) {
   const auto m = methods();
-  if (std::find(m.begin(), m.end(), s.method) == m.end()) return Result::failure("unknown method '" + s.method + "'");
+  if (std::find(m.begin(), m.end(), s.method) == m.end())
+    return Result::failure("unknown method '" + s.method + "'");
   s_ = s;
   return Result::success();
 }
@@ -40,12 +41,18 @@ Image render_pattern(const ViewSettings& s, double rotation, int bias) {
       const double u = (x + 0.5) / s.width - 0.5, v = (y + 0.5) / s.height - 0.5;
       const double ru = c * u - sn * v, rv = sn * u + c * v;
       double t = 0;
-      if (s.method == "gradient") t = 0.5 + ru;
-      else if (s.method == "rings") t = 0.5 + 0.5 * std::cos(40 * std::hypot(ru, rv));
-      else t = 0.5;
-      const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(x));
+      if (s.method == "gradient")
+        t = 0.5 + ru;
+      else if (s.method == "rings")
+        t = 0.5 + 0.5 * std::cos(40 * std::hypot(ru, rv));
+      else
+        t = 0.5;
+      const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) +
+                          static_cast<std::size_t>(x));
       for (int k = 0; k < 3; ++k) {
-        const double level = std::clamp(255.0 * t * s.color[static_cast<std::size_t>(k)] * (0.5 + 0.5 * (rv + 0.5)) + bias, 0.0, 255.0);
+        const double level = std::clamp(
+            255.0 * t * s.color[static_cast<std::size_t>(k)] * (0.5 + 0.5 * (rv + 0.5)) + bias, 0.0,
+            255.0);
         img.rgb[i + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::lround(level));
       }
     }
@@ -60,7 +67,8 @@ RenderedFrame PatternSource::render(double rotation) {
   ++frames_;
   const auto px = static_cast<std::uint64_t>(s_.width) * static_cast<std::uint64_t>(s_.height);
   f.counters = {{"frames", frames_}, {"pixels_written", px}, {"method_" + s_.method, 1}};
-  f.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  f.render_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return f;
 }
 

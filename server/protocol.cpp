@@ -49,8 +49,8 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
 }
 
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
-                      std::span<const std::uint8_t> rgb, double render_ms,
-                      const Counters& counters, std::uint64_t checksum) {
+                      std::span<const std::uint8_t> rgb, double render_ms, const Counters& counters,
+                      std::uint64_t checksum) {
   auto f = std::make_shared<EncodedFrame>();
   f->kind = kind;
   f->id = id;
@@ -66,7 +66,10 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
   f->header_bytes = kHeaderBytes + block.size();
   std::string& b = f->bytes;
   b.assign(f->header_bytes + rgb.size(), '\0');
-  b[0] = 'T'; b[1] = 'P'; b[2] = 'F'; b[3] = 'B';
+  b[0] = 'T';
+  b[1] = 'P';
+  b[2] = 'F';
+  b[3] = 'B';
   put16(b, 4, kProtocolVersion);
   put16(b, 6, static_cast<std::uint16_t>(kind));
   put32(b, 8, id);
@@ -107,7 +110,8 @@ bool decode_header(std::span<const std::uint8_t> m, EncodedFrame& out) {
   out.render_ms = static_cast<double>(get(m, 20, 4)) / 1000.0;
   out.checksum = get(m, 24, 8);
   const auto payload = get(m, 32, 4);
-  const auto expect = static_cast<std::uint64_t>(out.width) * static_cast<std::uint64_t>(out.height) * 3;
+  const auto expect =
+      static_cast<std::uint64_t>(out.width) * static_cast<std::uint64_t>(out.height) * 3;
   return payload == expect && m.size() == out.header_bytes + payload;
 }
 

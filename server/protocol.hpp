@@ -35,9 +35,9 @@ struct EncodedFrame {
   int width = 0, height = 0;
   std::uint64_t checksum = 0;
   double render_ms = 0;
-  Counters counters;           // the device's counters for this very frame
+  Counters counters;                        // the device's counters for this very frame
   std::size_t header_bytes = kHeaderBytes;  // where the pixels start
-  std::string bytes;  // header + counters + pixels, ready for the WebSocket
+  std::string bytes;                        // header + counters + pixels, ready for the WebSocket
 };
 using FramePtr = std::shared_ptr<const EncodedFrame>;
 
@@ -47,8 +47,8 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
 // The same with the pixels' FNV-1a 64 already known (the render loop hashes every frame to
 // detect repeats; the hash is not computed twice).
 FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
-                      std::span<const std::uint8_t> rgb, double render_ms,
-                      const Counters& counters, std::uint64_t checksum);
+                      std::span<const std::uint8_t> rgb, double render_ms, const Counters& counters,
+                      std::uint64_t checksum);
 
 // Parses a header (for tests and tools); false if the buffer is not a valid frame message.
 bool decode_header(std::span<const std::uint8_t> msg, EncodedFrame& out);

@@ -18,8 +18,8 @@ ErrorStats compare_images(const Image& d, const Image& r) {
   ErrorStats e;
   const std::size_t n = static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height);
   // A reference computed after a resolution change can differ in size from its device frame.
-  if (d.width != r.width || d.height != r.height || d.rgb.size() != 3 * n || r.rgb.size() != 3 * n ||
-      d.covered.size() != n || r.covered.size() != n)
+  if (d.width != r.width || d.height != r.height || d.rgb.size() != 3 * n ||
+      r.rgb.size() != 3 * n || d.covered.size() != n || r.covered.size() != n)
     return e;
   host::Image8 device(d.width, d.height), reference(r.width, r.height);
   device.rgb = d.rgb;
@@ -90,14 +90,27 @@ void RenderLoop::publish_state() {
   const ViewSettings& s = src_->settings();
   json lights = json::array();
   for (const auto& l : s.lights)
-    lights.push_back({{"kind", l.point ? "point" : "directional"}, {"vector", l.vector}, {"color", l.color}});
-  json j = {{"type", "state"},     {"scene", s.scene},       {"method", s.method},
-            {"use_ab", s.use_ab},  {"n", s.n},               {"a", s.a},
-            {"b", s.b},            {"ka", s.ka},             {"kd", s.kd},
-            {"ks", s.ks},          {"color", s.color},       {"lights", lights},
-            {"width", s.width},    {"height", s.height},     {"animate", flags_.animate},
-            {"paused", flags_.paused}, {"reference", flags_.reference},
-            {"methods", src_->methods()}, {"scenes", src_->scenes()}};
+    lights.push_back(
+        {{"kind", l.point ? "point" : "directional"}, {"vector", l.vector}, {"color", l.color}});
+  json j = {{"type", "state"},
+            {"scene", s.scene},
+            {"method", s.method},
+            {"use_ab", s.use_ab},
+            {"n", s.n},
+            {"a", s.a},
+            {"b", s.b},
+            {"ka", s.ka},
+            {"kd", s.kd},
+            {"ks", s.ks},
+            {"color", s.color},
+            {"lights", lights},
+            {"width", s.width},
+            {"height", s.height},
+            {"animate", flags_.animate},
+            {"paused", flags_.paused},
+            {"reference", flags_.reference},
+            {"methods", src_->methods()},
+            {"scenes", src_->scenes()}};
   auto msg = std::make_shared<const std::string>(j.dump());
   {
     std::lock_guard lk(m_);
@@ -140,8 +153,8 @@ void RenderLoop::render_and_publish(double rotation) {
   // Identical consecutive frames (same size and checksum) are not re-sent.
   if (sum != last_checksum_ || img.width != last_w_ || img.height != last_h_) {
     const std::uint32_t id = next_id_++;
-    hub_.publish_frame(encode_frame(FrameKind::device, id, img.width, img.height, img.rgb, f.render_ms,
-                                     f.counters, sum));
+    hub_.publish_frame(encode_frame(FrameKind::device, id, img.width, img.height, img.rgb,
+                                    f.render_ms, f.counters, sum));
     last_checksum_ = sum;
     last_w_ = img.width;
     last_h_ = img.height;
@@ -200,7 +213,8 @@ void RenderLoop::run() {
       }
     }
     // Pace to max_fps; wake early for control messages.
-    const auto next = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / opt_.max_fps));
+    const auto next = t0 + std::chrono::duration_cast<Clock::duration>(
+                               std::chrono::duration<double>(1.0 / opt_.max_fps));
     std::unique_lock lk(m_);
     cv_.wait_until(lk, next, [&] { return !running_ || !jobs_.empty(); });
   }
@@ -235,7 +249,8 @@ void RenderLoop::ref_run() {
       if (!reference_on_) continue;  // switched off meanwhile
       error_ = e;
     }
-    hub_.publish_frame(encode_frame(FrameKind::reference, job.frame_id, ref.width, ref.height, ref.rgb, 0));
+    hub_.publish_frame(
+        encode_frame(FrameKind::reference, job.frame_id, ref.width, ref.height, ref.rgb, 0));
   }
 }
 

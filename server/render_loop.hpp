@@ -52,9 +52,20 @@ class RenderLoop {
   std::string stats_message(std::size_t clients);
 
  private:
-  struct Job { Command cmd; Done done; };
-  struct RefJob { std::function<Image()> task; std::uint32_t frame_id; Image device; };
-  struct LastFrame { double rotation; std::uint32_t frame_id; Image device; };
+  struct Job {
+    Command cmd;
+    Done done;
+  };
+  struct RefJob {
+    std::function<Image()> task;
+    std::uint32_t frame_id;
+    Image device;
+  };
+  struct LastFrame {
+    double rotation;
+    std::uint32_t frame_id;
+    Image device;
+  };
   void run();
   bool apply_pending();  // true if anything changed
   void render_and_publish(double rotation);

@@ -32,7 +32,9 @@ struct Server::Impl {
   net::ip::address addr;
 
   Impl(ServerOptions o, std::unique_ptr<FrameSource> src)
-      : opt(std::move(o)), ioc(std::max(1, opt.io_threads)), loop(std::move(src), hub, opt.loop),
+      : opt(std::move(o)),
+        ioc(std::max(1, opt.io_threads)),
+        loop(std::move(src), hub, opt.loop),
         ctx{hub, loop, {}, opt.limits} {
     addr = net::ip::make_address(opt.bind);
     listener = std::make_shared<Listener>(ioc, net::ip::tcp::endpoint{addr, opt.port}, ctx);
@@ -50,7 +52,8 @@ struct Server::Impl {
         fail(ec, "stats timer");  // cancelled at shutdown: not reported
         return;
       }
-      hub.broadcast_text(std::make_shared<const std::string>(loop.stats_message(hub.clients())), true);
+      hub.broadcast_text(std::make_shared<const std::string>(loop.stats_message(hub.clients())),
+                         true);
       tick_stats();
     });
   }

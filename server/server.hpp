@@ -14,7 +14,7 @@ namespace tp::server {
 struct ServerOptions {
   std::string bind = "127.0.0.1";
   std::vector<std::string> allow_hosts;  // extra Host names accepted (e.g. a LAN name with --bind)
-  unsigned short port = 8080;  // 0: pick a free port
+  unsigned short port = 8080;            // 0: pick a free port
   int io_threads = 1;
   double stats_hz = 4;
   std::chrono::milliseconds shutdown_grace{1500};

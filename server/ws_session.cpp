@@ -8,7 +8,11 @@
 namespace tp::server {
 
 WsSession::WsSession(beast::tcp_stream&& stream, Hub& hub, RenderLoop& loop, SessionLimits limits)
-    : ws_(std::move(stream)), hub_(hub), loop_(loop), limits_(limits), watchdog_(ws_.get_executor()) {}
+    : ws_(std::move(stream)),
+      hub_(hub),
+      loop_(loop),
+      limits_(limits),
+      watchdog_(ws_.get_executor()) {}
 
 void WsSession::run(Request req) {
   // Beast's own timeouts cover the handshake and dead peers (pings); our watchdog covers a peer
@@ -80,7 +84,8 @@ void WsSession::handle_text(const std::string& text) {
   const ControlType type = c.type;
   auto done = [weak, type](const Result& outcome) {
     if (auto self = weak.lock())
-      net::post(self->ws_.get_executor(), [self, type, outcome] { self->reply(to_string(type), outcome); });
+      net::post(self->ws_.get_executor(),
+                [self, type, outcome] { self->reply(to_string(type), outcome); });
   };
   if (Result busy = loop_.submit(c, std::move(done)); !busy.ok()) reply(to_string(type), busy);
 }
@@ -94,7 +99,8 @@ void WsSession::handle_ack(const Command& c) {
       return;
     }
   }
-  reply(to_string(ControlType::ack), Result::failure("no frame " + std::to_string(c.ack_id) + " in flight"));
+  reply(to_string(ControlType::ack),
+        Result::failure("no frame " + std::to_string(c.ack_id) + " in flight"));
 }
 
 void WsSession::reply(std::string_view request, const Result& outcome) {
@@ -112,15 +118,17 @@ void WsSession::offer_frame(FramePtr f) {
 }
 
 void WsSession::offer_text(TextPtr msg, bool droppable) {
-  net::post(ws_.get_executor(), [self = shared_from_this(), msg = std::move(msg), droppable]() mutable {
-    self->queue_text(std::move(msg), droppable);
-  });
+  net::post(ws_.get_executor(),
+            [self = shared_from_this(), msg = std::move(msg), droppable]() mutable {
+              self->queue_text(std::move(msg), droppable);
+            });
 }
 
 void WsSession::queue_text(TextPtr msg, bool droppable) {
   if (!open_ || closing_) return;
   if (text_q_.size() >= limits_.max_text_queue) {
-    auto it = std::find_if(text_q_.begin(), text_q_.end(), [](const Pending& p) { return p.droppable; });
+    auto it =
+        std::find_if(text_q_.begin(), text_q_.end(), [](const Pending& p) { return p.droppable; });
     if (it != text_q_.end()) {
       text_q_.erase(it);  // stale statistics go first
     } else if (droppable) {
@@ -201,11 +209,10 @@ void WsSession::close_going_away() {
     if (!self->open_ || self->closing_) return;
     self->closing_ = true;
     self->closing_since_ = std::chrono::steady_clock::now();  // the close must finish in time too
-    self->ws_.async_close(websocket::close_code::going_away,
-                          [self](beast::error_code ec) {
-                            fail(ec, "websocket close");
-                            self->abort();
-                          });
+    self->ws_.async_close(websocket::close_code::going_away, [self](beast::error_code ec) {
+      fail(ec, "websocket close");
+      self->abort();
+    });
   });
 }
 

@@ -27,9 +27,9 @@ namespace net = boost::asio;
 class RenderLoop;
 
 struct SessionLimits {
-  std::size_t max_in_flight = 2;            // unacknowledged frames per client
-  std::size_t max_text_queue = 64;          // queued text messages before dropping / closing
-  std::chrono::milliseconds deadline{5000};  // write pending or frame unacked this long → close
+  std::size_t max_in_flight = 2;               // unacknowledged frames per client
+  std::size_t max_text_queue = 64;             // queued text messages before dropping / closing
+  std::chrono::milliseconds deadline{5000};    // write pending or frame unacked this long → close
   std::size_t hard_message_limit = 64 * 1024;  // Beast read_message_max: beyond this, close 1009
 };
 
@@ -59,8 +59,15 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void on_watchdog(beast::error_code ec);
   void abort();
 
-  struct Pending { TextPtr text; bool droppable; };
-  struct InFlight { FrameKind kind; std::uint32_t id; std::chrono::steady_clock::time_point sent; };
+  struct Pending {
+    TextPtr text;
+    bool droppable;
+  };
+  struct InFlight {
+    FrameKind kind;
+    std::uint32_t id;
+    std::chrono::steady_clock::time_point sent;
+  };
 
   websocket::stream<beast::tcp_stream> ws_;
   Hub& hub_;

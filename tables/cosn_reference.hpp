@@ -10,8 +10,9 @@
 
 namespace tp::tables::cosn {
 
-// Kuijk-Blake section 2 with the labels corrected (docs/ACCURACY.md, "Lookup-free cos^n"): a < b, the inner parabola on
-// |θ| <= a, the outer one up to b, zero beyond. Continuous in value and slope at ±a and ±b.
+// Kuijk-Blake section 2 with the labels corrected (docs/ACCURACY.md, "Lookup-free cos^n"): a < b,
+// the inner parabola on |θ| <= a, the outer one up to b, zero beyond. Continuous in value and slope
+// at ±a and ±b.
 inline double f_quad(double theta, double a, double b) {
   const double t = std::fabs(theta);
   if (t >= b) return 0.0;

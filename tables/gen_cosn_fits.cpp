@@ -54,8 +54,10 @@ std::array<double, 2> nelder_mead(const Objective& obj, std::array<double, 2> x0
     if (fr < v[0]) {
       const auto e = along(-2.0);
       const double fe = eval(e);
-      if (fe < fr) s[2] = e, v[2] = fe;
-      else s[2] = r, v[2] = fr;
+      if (fe < fr)
+        s[2] = e, v[2] = fe;
+      else
+        s[2] = r, v[2] = fr;
     } else if (fr < v[1]) {
       s[2] = r, v[2] = fr;
     } else {

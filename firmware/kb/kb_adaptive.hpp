@@ -34,7 +34,7 @@ namespace tp::fw::kb {
 // 0.61 does not (tests/kb/test_kb_adaptive.cpp).
 inline constexpr std::int32_t kBudgetLevels = 1;
 inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
-inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
+inline constexpr int kMaxLevel = 4;                 // deepest subdivision: 4^4 = 256 sub-triangles
 inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
@@ -71,7 +71,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // writes and what the cheap paths are held to (tests).
   Rgb8 exact_at(std::int32_t x, std::int32_t y) const;
 
- // A cell of the subdivision: level L has 4^L cells, "up" (i, j) with i + j <= 2^L − 1 and
+  // A cell of the subdivision: level L has 4^L cells, "up" (i, j) with i + j <= 2^L − 1 and
   // "down" (i, j) with i + j <= 2^L − 2, in units of 2^-L of the barycentrics (λ1, λ2).
   struct Cell {
     int level = 0, i = 0, j = 0;
@@ -103,16 +103,14 @@ class KbAdaptiveMethod final : public ShadingMethod {
   static constexpr int kMaxCrossings = 256;
   struct Lattice {
     std::int32_t value[kLatticePoints][kChannels] = {};  // see kChannels
-    std::uint32_t stamp[kLatticePoints] = {};    // == generation: evaluated for this triangle
+    std::uint32_t stamp[kLatticePoints] = {};  // == generation: evaluated for this triangle
     std::uint32_t generation = 0;
   };
-  static constexpr int index(int a, int b) {
-    return b * (kLatticeRes + 1) - b * (b - 1) / 2 + a;
-  }
+  static constexpr int index(int a, int b) { return b * (kLatticeRes + 1) - b * (b - 1) / 2 + a; }
   // Lattice coordinates of quarter point (qu, qv) of cell c: kLatticeRes / (4·2^level) lattice
-  // steps per quarter, from the cell's A vertex (an "up" cell (i, j) has A = (i, j), B = A + (1, 0),
-  // C = A + (0, 1) in units of its level; a "down" cell A = (i + 1, j + 1), B = A − (1, 0),
-  // C = A − (0, 1)).
+  // steps per quarter, from the cell's A vertex (an "up" cell (i, j) has A = (i, j), B = A + (1,
+  // 0), C = A + (0, 1) in units of its level; a "down" cell A = (i + 1, j + 1), B = A − (1, 0), C =
+  // A − (0, 1)).
   static void cell_point(const Cell& c, int qu, int qv, int& la, int& lb) {
     const int st = kLatticeRes >> (c.level + 2);
     la = c.up ? (4 * c.i + qu) * st : (4 * (c.i + 1) - qu) * st;
@@ -123,9 +121,11 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void prepare_edge_keys(const Triangle& tri);
   void find_terminators(const Triangle& tri);
   void cell_points(const Cell& c, const std::int32_t* v[15]);
-  void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n, Rgb8* out) const;
+  void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n,
+                      Rgb8* out) const;
   template <std::size_t K>
-  static void shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n, Rgb8* out);
+  static void shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n,
+                              Rgb8* out);
   Samples6 samples_of(const Cell& c, int ch) const;
   std::int64_t check_error(const Cell& c);
   void refine(const Cell& c, bool guarded, std::uint32_t peaks);
@@ -136,7 +136,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
-  void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n, Rgb8* out) const;
+  void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n,
+                  Rgb8* out) const;
   void shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const;
   void fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u, std::int64_t v,
                       std::int32_t n, Rgb8* out) const;
@@ -168,8 +169,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   int leaf_count_ = 0;
   Crossing crossings_[kMaxCrossings];
   int crossing_count_ = 0;
-  int terminators_ = 0;                      // lights with their terminator handled
-  std::uint32_t terminator_mask_ = 0;        // those lights (PointShader's light numbers)
+  int terminators_ = 0;                                // lights with their terminator handled
+  std::uint32_t terminator_mask_ = 0;                  // those lights (PointShader's light numbers)
   std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
   std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_
   std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel] = {};

@@ -27,10 +27,10 @@ inline constexpr std::int32_t kMinChunkWidthRaw = 8 << 16;  // 8 pixels, Q15.16
 
 // Exact span parameters of one term at one row.
 struct SpanParams {
-  std::int64_t phi_left = 0;  // angle_t raw
-  std::int64_t rate = 0;      // dangle_t raw (Q.40 rad per pixel), |rate| <= 1 rad
+  std::int64_t phi_left = 0;          // angle_t raw
+  std::int64_t rate = 0;              // dangle_t raw (Q.40 rad per pixel), |rate| <= 1 rad
   std::int64_t scale[3] = {0, 0, 0};  // q1_30 raw, w_c·f(s)
-  angle_t theta{};            // the span's arc angle (exact setup only)
+  angle_t theta{};                    // the span's arc angle (exact setup only)
 };
 
 inline constexpr int kParams = 5;  // φ_L, r, q_r, q_g, q_b

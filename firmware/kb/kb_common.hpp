@@ -87,7 +87,7 @@ struct MaterialCoeffs {
 // segment of the same polynomial (make_segments(c, θ, 0, 1, 1)[0].st.v, without building it).
 inline std::int64_t f_at(const cosn::CosnCoeffs& c, angle_t theta) {
   return cosn::seed_value(c, theta.raw(), q1_30::one().raw(),
-                                     cosn::piece_of(theta.raw(), c.a, c.b));
+                          cosn::piece_of(theta.raw(), c.a, c.b));
 }
 
 // scale_c = weight_c · f (f in cosn's state format, <= 1), rounded into Q1.30: f is first

@@ -72,11 +72,16 @@ constexpr Unit combine(q1_30 c1, const Unit& u, q1_30 c2, const Unit& v) {
 // A unit vector orthogonal to v, chosen deterministically (the axis v is least aligned with,
 // crossed with v): used only for antipodal arcs.
 constexpr Unit any_perpendicular(const Unit& v) {
-  const auto mag = [](q1_30 c) { return c.raw() < 0 ? -static_cast<std::int64_t>(c.raw()) : c.raw(); };
+  const auto mag = [](q1_30 c) {
+    return c.raw() < 0 ? -static_cast<std::int64_t>(c.raw()) : c.raw();
+  };
   Unit axis{q1_30::zero(), q1_30::zero(), q1_30::zero()};
-  if (mag(v.x) <= mag(v.y) && mag(v.x) <= mag(v.z)) axis.x = q1_30::one();
-  else if (mag(v.y) <= mag(v.z)) axis.y = q1_30::one();
-  else axis.z = q1_30::one();
+  if (mag(v.x) <= mag(v.y) && mag(v.x) <= mag(v.z))
+    axis.x = q1_30::one();
+  else if (mag(v.y) <= mag(v.z))
+    axis.y = q1_30::one();
+  else
+    axis.z = q1_30::one();
   return fx::normalize<q1_30>(fx::cross<q1_30>(v, axis));
 }
 
@@ -90,7 +95,9 @@ constexpr q1_30 length(const Unit& v) {
 // (angles under 8 · 2^-30 rad, four LSB of angle_t, count as zero).
 inline constexpr std::int32_t kNegligibleRaw = 8;
 constexpr bool is_negligible(const Unit& w) {
-  const auto small = [](q1_30 c) { return c.raw() <= kNegligibleRaw && c.raw() >= -kNegligibleRaw; };
+  const auto small = [](q1_30 c) {
+    return c.raw() <= kNegligibleRaw && c.raw() >= -kNegligibleRaw;
+  };
   return small(w.x) && small(w.y) && small(w.z);
 }
 
@@ -194,10 +201,10 @@ constexpr Rotation rotation_to(const Unit& n, const Unit& o) {
   // an axis orthogonal to n keeps R·n = cos·n + sin·(k × n) close to o whatever its azimuth.
   // Normalise first (the projection then carries 1 LSB, not 1 LSB / |n × o|), then project.
   Unit k0{};
-  const bool has_axis = !is_negligible(a) && fx::try_normalize<q1_30>(a, k0) &&
-                        fx::try_normalize<q1_30>(
-                            combine(q1_30::one(), k0, fx::neg_sat(fx::dot<q1_30>(k0, n)), n),
-                            r.axis);
+  const bool has_axis =
+      !is_negligible(a) && fx::try_normalize<q1_30>(a, k0) &&
+      fx::try_normalize<q1_30>(combine(q1_30::one(), k0, fx::neg_sat(fx::dot<q1_30>(k0, n)), n),
+                               r.axis);
   if (!has_axis) {
     if (r.cos.raw() >= 0) return Rotation{};  // identity
     r.axis = any_perpendicular(n);
@@ -212,12 +219,13 @@ constexpr Rotation rotation_to(const Unit& n, const Unit& o) {
 constexpr Unit rotate(const Rotation& r, const Unit& v) {
   const Unit kxv = fx::cross<q1_30>(r.axis, v);
   // (1 − cos)·(k·v) <= 2 in magnitude: q1_30's range [−2, 2) holds it up to one LSB.
-  const q1_30 along = fx::mul_sat<q1_30>(fx::sub_sat(q1_30::one(), r.cos), fx::dot<q1_30>(r.axis, v));
+  const q1_30 along =
+      fx::mul_sat<q1_30>(fx::sub_sat(q1_30::one(), r.cos), fx::dot<q1_30>(r.axis, v));
   using W = fx::Q<2, 60, std::int64_t>;
   const auto one = [&](q1_30 vc, q1_30 kxvc, q1_30 kc) {
     const std::int64_t sum = fx::mul_wide(r.cos, vc).raw() + fx::mul_wide(r.sin, kxvc).raw() +
                              fx::mul_wide(along, kc).raw();  // each < 2^61, sum < 2^62.6: no
-    return fx::convert<q1_30>(W::from_raw(sum));              // overflow, |result| <= ~1
+    return fx::convert<q1_30>(W::from_raw(sum));             // overflow, |result| <= ~1
   };
   return {one(v.x, kxv.x, r.axis.x), one(v.y, kxv.y, r.axis.y), one(v.z, kxv.z, r.axis.z)};
 }
@@ -236,9 +244,9 @@ constexpr Unit arc_at_fraction(const Arc& arc, q1_30 t) {
 
 // The span's great circle seen from O (Kuijk-Blake eq. 4, Figure 10).
 struct SpanCircle {
-  angle_t s{};          // angle(O, S) in [0, π/2]: cos^n α = cos^n φ · cos^n s
-  angle_t phi_left{};   // φ at V_L
-  angle_t theta{};      // arc angle from V_L to V_R (φ at V_R = phi_left + theta)
+  angle_t s{};            // angle(O, S) in [0, π/2]: cos^n α = cos^n φ · cos^n s
+  angle_t phi_left{};     // φ at V_L
+  angle_t theta{};        // arc angle from V_L to V_R (φ at V_R = phi_left + theta)
   bool constant = false;  // V_L ≈ V_R: φ does not change along the span
 };
 
@@ -303,8 +311,8 @@ constexpr angle_t span_phi_first(const SpanCircle& c, xpos_t x_left, xpos_t x_ri
   q1_30 frac = fx::div<q1_30>(fx::sub_sat(first_centre, x_left), width);
   if (frac.raw() < 0) frac = q1_30::zero();
   if (frac > q1_30::one()) frac = q1_30::one();
-  const std::int64_t phi = std::int64_t{c.phi_left.raw()} +
-                           fx::mul_sat<angle_t>(frac, c.theta).raw();  // < 2π + 1 LSB
+  const std::int64_t phi =
+      std::int64_t{c.phi_left.raw()} + fx::mul_sat<angle_t>(frac, c.theta).raw();  // < 2π + 1 LSB
   return angle_t::from_raw_sat(wrap_pi(phi));
 }
 

@@ -21,9 +21,9 @@ namespace tp::fw::kb {
 
 // One term of the one-vector method on the current triangle.
 struct OneVectorTerm {
-  EdgeArcs v;                 // V along the three edges
+  EdgeArcs v;                                // V along the three edges
   const cosn::CosnCoeffs* coeffs = nullptr;  // (a, b) of the term
-  q1_30 weight[3];            // Il_c·k·O_c·255/4096, before f(s)
+  q1_30 weight[3];                           // Il_c·k·O_c·255/4096, before f(s)
 };
 
 // cos and sin of the angle from O beyond which a term is zero (plus a margin), for the
@@ -41,8 +41,7 @@ class KbOneVectorMethod final : public ShadingMethod {
  public:
   // skipping = false evaluates every term on every span (the image must not change: tested).
   // coherent = false sets every span up exactly (kb_coherence.hpp measures the difference).
-  explicit KbOneVectorMethod(bool skipping, bool coherent = true,
-                             OChoice o = OChoice::kPaper)
+  explicit KbOneVectorMethod(bool skipping, bool coherent = true, OChoice o = OChoice::kPaper)
       : skipping_(skipping), coherent_(coherent), o_choice_(o) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;

@@ -10,9 +10,9 @@
 //   c_uv = 4 (g_A − g_AB − g_CA + g_BC)
 // (substitution: q(1, 0) = g_B, q(½, 0) = g_AB, q(½, ½) = g_BC, …; tests/kb/test_kb_quadratic.cpp).
 //
-// Formats: samples are 8-bit output levels in Q.14 (|g| < 2^25, unclamped: kb_sample.hpp); the span state is levels in
-// Q.40 (kStateFrac), so that 4,096 steps of a rounded second difference stay far below 1/256 of
-// a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
+// Formats: samples are 8-bit output levels in Q.14 (|g| < 2^25, unclamped: kb_sample.hpp); the span
+// state is levels in Q.40 (kStateFrac), so that 4,096 steps of a rounded second difference stay far
+// below 1/256 of a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
 #pragma once
 
 #include <array>
@@ -24,8 +24,8 @@
 
 namespace tp::fw::kb {
 
-inline constexpr int kSampleFrac = 14;  // sample values: levels, Q.14
-inline constexpr int kQuadStateFrac = 40;  // forward-differencing state: levels, Q.40
+inline constexpr int kSampleFrac = 14;        // sample values: levels, Q.14
+inline constexpr int kQuadStateFrac = 40;     // forward-differencing state: levels, Q.40
 using local_t = fx::Q<32, 30, std::int64_t>;  // u, v, du, dv
 
 // The six samples of one channel, in the order A, B, C, AB, BC, CA.
@@ -77,7 +77,8 @@ inline constexpr auto kCheckWeights = [] {
     for (int j = 0; j < 6; ++j) {
       Samples6 unit{};
       unit.g[j] = 1;
-      t[static_cast<std::size_t>(k)].w[j] = quadratic_x8_at(unit, kCheckPoints[k].qu, kCheckPoints[k].qv);
+      t[static_cast<std::size_t>(k)].w[j] =
+          quadratic_x8_at(unit, kCheckPoints[k].qu, kCheckPoints[k].qv);
     }
   return t;
 }();
@@ -111,9 +112,10 @@ inline SteppedQuadratic prepare_steps(const LocalQuadratic& q, std::int64_t du, 
   s.du = du;
   s.dv = dv;
   const std::int64_t du2 = du * du, dv2 = dv * dv, dudv = du * dv;  // Q.60, <= 2^62
-  constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;   // Q.14 × Q.60 -> Q.40
-  constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;  // Q.14 × Q.30 -> Q.40
-  const std::int64_t curve = fx::mul_shift_right(q.cuu, du2, kFromSq) + fx::mul_shift_right(q.cvv, dv2, kFromSq) +
+  constexpr int kFromSq = 60 + kSampleFrac - kQuadStateFrac;        // Q.14 × Q.60 -> Q.40
+  constexpr int kFromLin = 30 + kSampleFrac - kQuadStateFrac;       // Q.14 × Q.30 -> Q.40
+  const std::int64_t curve = fx::mul_shift_right(q.cuu, du2, kFromSq) +
+                             fx::mul_shift_right(q.cvv, dv2, kFromSq) +
                              fx::mul_shift_right(q.cuv, dudv, kFromSq);
   s.d2 = 2 * curve;
   s.e0 = fx::mul_shift_right(q.cu, du, kFromLin) + fx::mul_shift_right(q.cv, dv, kFromLin) + curve;
@@ -137,7 +139,7 @@ inline std::int64_t value_at(const LocalQuadratic& q, const Monomials& m) {
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   return q.c0 * (std::int64_t{1} << kToState) +
          fx::round_shift_right(q.cu * m.u + q.cv * m.v + q.cuu * m.uu + q.cvv * m.vv + q.cuv * m.uv,
-                                       kProd);
+                               kProd);
 }
 
 // Pieces of up to this many pixels take their first difference as the difference of the values
@@ -148,7 +150,8 @@ inline constexpr std::int32_t kShortPiece = 64;
 
 // The state of a short piece at the point with monomials `at`; `second`, the monomials at its
 // second pixel (u + du, v + dv), or nullptr for a one-pixel piece (the value alone).
-inline QuadStep seed_short(const SteppedQuadratic& s, const Monomials& at, const Monomials* second) {
+inline QuadStep seed_short(const SteppedQuadratic& s, const Monomials& at,
+                           const Monomials* second) {
   QuadStep st;
   st.v = value_at(s.q, at);
   if (second == nullptr) return st;
@@ -158,7 +161,8 @@ inline QuadStep seed_short(const SteppedQuadratic& s, const Monomials& at, const
 }
 
 // The state at local (u, v) (Q.30) of a piece of n pixels.
-inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v, std::int32_t n) {
+inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::int64_t v,
+                               std::int32_t n) {
   constexpr int kProd = 30 + kSampleFrac - kQuadStateFrac;  // Q.30 × Q.14 -> Q.40: >> 4
   const Monomials at = monomials(u, v);
   if (n <= 1) return seed_short(s, at, nullptr);  // (its steps may point far outside the cell)
@@ -168,7 +172,8 @@ inline QuadStep seed_quadratic(const SteppedQuadratic& s, std::int64_t u, std::i
   }
   QuadStep st;
   st.v = value_at(s.q, at);
-  st.d1 = s.e0 + fx::mul_shift_right(s.eu, u, kProd + 30) + fx::mul_shift_right(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
+  st.d1 = s.e0 + fx::mul_shift_right(s.eu, u, kProd + 30) +
+          fx::mul_shift_right(s.ev, v, kProd + 30);  // Q.44 × Q.30 -> Q.40
   st.d2 = s.d2;
   return st;
 }

@@ -22,14 +22,17 @@ namespace tp::fw::kb {
 // value as fx::dot<q1_30> (the exact sum, |.| < 3·2^60, fits 64 bits; no saturation is possible),
 // without its general 128-bit-safe path. Samples take several per light.
 inline std::int64_t dot_unit(const Vec3u& a, const Vec3u& b) {
-  return fx::round_shift_right(std::int64_t{a.x.raw()} * b.x.raw() + std::int64_t{a.y.raw()} * b.y.raw() +
-                                           std::int64_t{a.z.raw()} * b.z.raw(),
-                                       30);
+  return fx::round_shift_right(std::int64_t{a.x.raw()} * b.x.raw() +
+                                   std::int64_t{a.y.raw()} * b.y.raw() +
+                                   std::int64_t{a.z.raw()} * b.z.raw(),
+                               30);
 }
 
 // a·b in Q1.30 of a in [0, 2) and b in (−2, 2) (Q1.30), rounded half away from zero: fx::mul_sat's
 // value where no saturation can occur (|a·b| < 2 here: material weights and cosines).
-inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) { return fx::round_shift_right(a * b, 30); }
+inline std::int64_t mul_q30(std::int64_t a, std::int64_t b) {
+  return fx::round_shift_right(a * b, 30);
+}
 
 // A vector cut by `cut` bits to at most 30 bits per component (rounding half up: only its
 // direction matters) and the reciprocal root of its squared length; a zero vector keeps
@@ -96,9 +99,9 @@ class PointShader {
       // A directional light seen from an eye at infinity has one H everywhere.
       fixed_h_[lights_] = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;
       if (fixed_h_[lights_])
-        h_[lights_] = fx::normalize_fast(std::int64_t{l.direction.x.raw()},
-                                         std::int64_t{l.direction.y.raw()},
-                                         std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
+        h_[lights_] =
+            fx::normalize_fast(std::int64_t{l.direction.x.raw()}, std::int64_t{l.direction.y.raw()},
+                               std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
       light_[lights_++] = &l;
     }
     // The stepped per-pixel evaluation (SpanStepper): directional lights only, and a triangle
@@ -110,7 +113,8 @@ class PointShader {
     const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
     const Lambdas dk = lambdas_step_x(tri);
     const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
-    const int step_bits = static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
+    const int step_bits =
+        static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
     steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
     if (steppable_) {
       std::uint64_t max_normal = 0, max_eye = 0;
@@ -152,8 +156,10 @@ class PointShader {
     const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y));
     SpanStepper st;
     for (int j = 0; j < 3; ++j) {
-      st.n[j] = static_cast<std::int64_t>(normal_plane_[0][j] + ux * normal_plane_[1][j] + uy * normal_plane_[2][j]);
-      st.p[j] = static_cast<std::int64_t>(eye_plane_[0][j] + ux * eye_plane_[1][j] + uy * eye_plane_[2][j]);
+      st.n[j] = static_cast<std::int64_t>(normal_plane_[0][j] + ux * normal_plane_[1][j] +
+                                          uy * normal_plane_[2][j]);
+      st.p[j] = static_cast<std::int64_t>(eye_plane_[0][j] + ux * eye_plane_[1][j] +
+                                          uy * eye_plane_[2][j]);
     }
     return st;
   }
@@ -196,7 +202,7 @@ class PointShader {
   struct Point {
     Vec3u normal, eye;
     std::int64_t p[3] = {0, 0, 0};
-    std::int64_t s = 0;          // the scale of p, < 2^30
+    std::int64_t s = 0;           // the scale of p, < 2^30
     std::int64_t normal_eye = 0;  // N·E, Q1.30
     bool inside = false;
   };
@@ -258,7 +264,6 @@ class PointShader {
   }
 
  public:
-
   int lights() const { return lights_; }
   const LightState& light(int i) const { return *light_[i]; }
 
@@ -267,7 +272,8 @@ class PointShader {
     const LightState& l = *light_[i];
     if (l.type != LightType::kPoint) return l.direction;
     // s·L_pos − s·P: |.| < 2^31·2^30 + 2^61 = 2^62.
-    return fx::normalize_fast(l.position.x.raw() * pt.s - pt.p[0], l.position.y.raw() * pt.s - pt.p[1],
+    return fx::normalize_fast(l.position.x.raw() * pt.s - pt.p[0],
+                              l.position.y.raw() * pt.s - pt.p[1],
                               l.position.z.raw() * pt.s - pt.p[2]);
   }
   Vec3u halfway(const Point& pt, int i, const Vec3u& lv) const {
@@ -281,12 +287,14 @@ class PointShader {
   // N·H (Q1.30, clamped to [0, 1]) without forming H: N·(L + E) / |L + E|, with
   // |L + E|² = 2 + 2 L·E — one scalar reciprocal root instead of a normalised vector. Where L
   // and E are opposite, H is undefined; the vector form gives 0 there, and so does this.
-  std::int64_t normal_halfway(const Point& pt, int i, const Vec3u& lv, std::int64_t normal_light) const {
+  std::int64_t normal_halfway(const Point& pt, int i, const Vec3u& lv,
+                              std::int64_t normal_light) const {
     if (fixed_h_[i]) {
       const std::int64_t d = dot_unit(pt.normal, h_[i]);
       return d > 0 ? d : 0;
     }
-    const std::int64_t light_eye = ctx_->eye == EyeMode::kFinite ? dot_unit(lv, pt.eye) : lv.z.raw();
+    const std::int64_t light_eye =
+        ctx_->eye == EyeMode::kFinite ? dot_unit(lv, pt.eye) : lv.z.raw();
     return halfway_cosine(normal_light + pt.normal_eye, light_eye);
   }
   // N·H from x = N·(L + E) and L·E (Q1.30): x / √(2 + 2 L·E), clamped to [0, 1].
@@ -339,7 +347,9 @@ class PointShader {
     if (no_spec && ndl == 0) return;  // adds exactly 0
     const MaterialCmd& m = ctx_->material;
     const std::int64_t spec =
-        no_spec ? 0 : mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
+        no_spec ? 0
+                : mul_q30(m.ks.raw(),
+                          power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
     if (white_[li]) {
       for (int c = 0; c < 3; ++c) acc[c] += mul_q30(diffuse_[c], ndl) + spec;
       return;
@@ -446,8 +456,8 @@ class PointShader {
   bool fixed_h_[kMaxLights] = {};
   bool white_[kMaxLights] = {};  // intensity exactly 1 in every channel
   static constexpr std::int32_t kUnitIntensity = std::int32_t{1} << 16;  // q15_16 one
-  std::int64_t spec_zero_below_ = 0;  // update_spec_zero
-  std::uint32_t spec_zero_n_ = 0;     // the exponent and ks it was found for (n >= 1: 0 is none)
+  std::int64_t spec_zero_below_ = 0;                                     // update_spec_zero
+  std::uint32_t spec_zero_n_ = 0;  // the exponent and ks it was found for (n >= 1: 0 is none)
   std::int32_t spec_zero_ks_ = 0;
   Vec3u h_[kMaxLights];
   int lights_ = 0;

@@ -1,5 +1,5 @@
-// Summed quadratic sections (Kuijk-Blake section 2, last paragraphs; docs/KUIJK-BLAKE.md): every term
-// (a light's diffuse or specular f along the span, times its per-channel weight) is a
+// Summed quadratic sections (Kuijk-Blake section 2, last paragraphs; docs/KUIJK-BLAKE.md): every
+// term (a light's diffuse or specular f along the span, times its per-channel weight) is a
 // piecewise quadratic in x with break points where φ crosses ±a, ±b. Their sum is again
 // piecewise quadratic with the union of the break points, so the whole span is ONE
 // forward-differenced quadratic per colour channel: two additions per channel per pixel plus
@@ -12,10 +12,11 @@
 // spans of 4,096 pixels in tests/kb/test_kb_sections.cpp).
 //
 // Units: a channel's value v (cosn's state format Q.S, S = cosn::kStateFrac = 44) is
-// 255·I/4096, so the output level round(255·I) is round(v / 2^(S − 12)), a shift: the per-term scale Il_c·k·O_c·f(s)·255/4096 <= 16·255/4096 < 1
-// fits cosn's q1_30 scale. Sum bound: 16 lights × 2 terms × 2^S = 2^49 for the value; the
-// differences are bounded per term in cosn_fd.hpp and checked here (kSafeBound) — a span whose
-// terms could overflow the sum is evaluated pixel by pixel from the direct evaluations instead.
+// 255·I/4096, so the output level round(255·I) is round(v / 2^(S − 12)), a shift: the per-term
+// scale Il_c·k·O_c·f(s)·255/4096 <= 16·255/4096 < 1 fits cosn's q1_30 scale. Sum bound: 16 lights ×
+// 2 terms × 2^S = 2^49 for the value; the differences are bounded per term in cosn_fd.hpp and
+// checked here (kSafeBound) — a span whose terms could overflow the sum is evaluated pixel by pixel
+// from the direct evaluations instead.
 //
 // Skipping: a segment where every term sits on a zero piece (|φ| >= b) has exactly the
 // ambient state (zero pieces have zero state, and the running sum is exact), so it is filled
@@ -65,10 +66,12 @@ constexpr int make_one_channel(const cosn::CosnCoeffs& coeffs, fx::angle_t theta
   const std::int64_t t0 = theta0.raw();
   // cosn saturates dθ to ±1 rad per pixel; use the same step here.
   const std::int64_t dt_in = length > 1 ? dtheta.raw() : 0;
-  const std::int64_t dt = dt_in > cosn::kMaxDThetaRaw ? cosn::kMaxDThetaRaw
-                          : (dt_in < -cosn::kMaxDThetaRaw ? -cosn::kMaxDThetaRaw : dt_in);
+  const std::int64_t dt = dt_in > cosn::kMaxDThetaRaw
+                              ? cosn::kMaxDThetaRaw
+                              : (dt_in < -cosn::kMaxDThetaRaw ? -cosn::kMaxDThetaRaw : dt_in);
   const std::int64_t end = t0 + dt * (length - 1);
-  if (end <= kPiRaw && end >= -kPiRaw) return cosn::make_segments(coeffs, theta0, dtheta, scale, length, out);
+  if (end <= kPiRaw && end >= -kPiRaw)
+    return cosn::make_segments(coeffs, theta0, dtheta, scale, length, out);
   // First pixel past ±π.
   const std::int64_t k = dt > 0 ? (kPiRaw - t0) / dt + 1 : (t0 + kPiRaw) / (-dt) + 1;
   const int first = cosn::make_segments(coeffs, theta0, dtheta, scale, static_cast<int>(k), out);
@@ -97,9 +100,9 @@ constexpr bool is_zero_piece(int piece) { return piece == 0 || piece == 4; }
 class SpanSections {
  public:
   struct Stats {
-    std::uint32_t segments = 0;       // merged segments evaluated (or filled)
-    std::uint32_t ambient_pixels = 0; // pixels filled without evaluation
-    bool direct = false;              // fell back to direct evaluation (overflow guard)
+    std::uint32_t segments = 0;        // merged segments evaluated (or filled)
+    std::uint32_t ambient_pixels = 0;  // pixels filled without evaluation
+    bool direct = false;               // fell back to direct evaluation (overflow guard)
   };
 
   // A span of `length` pixels (1..4096) whose constant part is ambient[c] (Q.S, 255·I/4096).
@@ -143,7 +146,8 @@ class SpanSections {
   // Spans refused by the overflow guard are evaluated directly (Stats::direct).
   constexpr Stats evaluate_raw(std::int64_t* r, std::int64_t* g, std::int64_t* b) {
     if (!safe_) {
-      for (int x = 0; x < length_; ++x) RawSink{r, g, b}.put(x, direct_raw(x, 0), direct_raw(x, 1), direct_raw(x, 2));
+      for (int x = 0; x < length_; ++x)
+        RawSink{r, g, b}.put(x, direct_raw(x, 0), direct_raw(x, 1), direct_raw(x, 2));
       return Stats{1, 0, true};
     }
     return run(RawSink{r, g, b}, false);

@@ -90,8 +90,9 @@ const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
 
 namespace {
 KbAdaptiveMethod::VertexKey key_of(const ShadeVertex& v) {
-  return {v.sx, v.sy, v.z, v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw(),
-          v.w.raw(), v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
+  return {
+      v.sx,      v.sy,          v.z,           v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw(),
+      v.w.raw(), v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
 }
 bool before(const KbAdaptiveMethod::VertexKey& a, const KbAdaptiveMethod::VertexKey& b) {
   if (a.sx != b.sx) return a.sx < b.sx;
@@ -136,12 +137,14 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[]) {
   const VertexKey& key_a = edge_.key[a];
   const VertexKey& key_b = edge_.key[b];
   const auto share = static_cast<std::int32_t>(ka * (kMemoScale / kLatticeRes));  // of kMemoScale
-  const std::uint32_t h = edge_.hash_first[a] ^ edge_.hash_second[b] ^ static_cast<std::uint32_t>(share) * 40503u;
+  const std::uint32_t h =
+      edge_.hash_first[a] ^ edge_.hash_second[b] ^ static_cast<std::uint32_t>(share) * 40503u;
   EdgeMemo& m = edge_memo_[(h ^ (h >> 15)) % kEdgeMemo];
   // The colours, then the N·L of the terminators (whose diffuse the colours leave unclamped):
   // the values depend on which lights are terminators, so the memo's key holds that set too.
   const int channels = 3 + terminators_;
-  if (m.valid && m.share == share && m.terminators == terminator_mask_ && m.a == key_a && m.b == key_b) {
+  if (m.valid && m.share == share && m.terminators == terminator_mask_ && m.a == key_a &&
+      m.b == key_b) {
     for (int c = 0; c < channels; ++c) out[c] = m.value[c];
     return;
   }
@@ -160,7 +163,8 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[]) {
 void KbAdaptiveMethod::prepare_edge_keys(const Triangle& tri) {
   for (int i = 0; i < 3; ++i) {
     edge_.key[i] = key_of(tri.v[i]);
-    const auto x = static_cast<std::uint32_t>(tri.v[i].sx), y = static_cast<std::uint32_t>(tri.v[i].sy);
+    const auto x = static_cast<std::uint32_t>(tri.v[i].sx),
+               y = static_cast<std::uint32_t>(tri.v[i].sy);
     edge_.hash_first[i] = x * 73856093u ^ y * 19349663u;
     edge_.hash_second[i] = x * 83492791u ^ y * 2654435761u;
   }
@@ -199,8 +203,8 @@ namespace {
 template <std::size_t K>
 std::int64_t point_error(const std::int64_t s[6], const std::int32_t* const v[15], int ch) {
   constexpr SampleWeights w = kCheckWeights[K];
-  const std::int64_t q8 = w.w[0] * s[0] + w.w[1] * s[1] + w.w[2] * s[2] + w.w[3] * s[3] + w.w[4] * s[4] +
-                          w.w[5] * s[5];
+  const std::int64_t q8 =
+      w.w[0] * s[0] + w.w[1] * s[1] + w.w[2] * s[2] + w.w[3] * s[3] + w.w[4] * s[4] + w.w[5] * s[5];
   return abs64(8 * std::int64_t{v[6 + K][ch]} - q8);
 }
 template <std::size_t... K>
@@ -300,7 +304,8 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
       }
       // The exact N·L keeps its sign where the quadratic's range, widened by the quadratic's
       // departure from the vertex plane and by its error at the check points, does.
-      const std::int64_t slack = curvature_bound(nl) + channel_error(points, 3 + t) + (std::int64_t{1} << 12);
+      const std::int64_t slack =
+          curvature_bound(nl) + channel_error(points, 3 + t) + (std::int64_t{1} << 12);
       if (lo - slack > 0) continue;  // lit over the cell
       if (hi + slack < 0) {          // dark over the cell
         for (int ch = 0; ch < 3; ++ch) {
@@ -373,7 +378,9 @@ void KbAdaptiveMethod::choose_cheap_path(std::int64_t err0) {
     ++counters_->adaptive_constant;
     for (LocalQuadratic& c : q) c = LocalQuadratic{c.c0, 0, 0, 0, 0, 0};
     whole_in_range_ = false;  // (filled, or stepped with the clamp by the no-skip variant)
-    const auto level = [](std::int64_t g) { return quad_level(g * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac))); };
+    const auto level = [](std::int64_t g) {
+      return quad_level(g * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
+    };
     constant_ = Rgb8{level(q[0].c0), level(q[1].c0), level(q[2].c0)};
   } else if (linear) {
     path_ = Path::kLinear;
@@ -384,8 +391,7 @@ void KbAdaptiveMethod::choose_cheap_path(std::int64_t err0) {
     ++counters_->adaptive_quadratic;
   }
   if (path_ != Path::kConstant)
-    for (int c = 0; c < 3; ++c)
-      whole_in_range_ = whole_in_range_ && inside_levels(q[c]);
+    for (int c = 0; c < 3; ++c) whole_in_range_ = whole_in_range_ && inside_levels(q[c]);
   for (int c = 0; c < 3; ++c) whole_[c] = prepare_steps(q[c], du_, dv_);
 }
 
@@ -507,7 +513,8 @@ void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range
 // The cell of `level` that holds the point with edge weights e1, e2 (λ1 = e1 / area2, …):
 // i <= s < i + 1, j <= t < j + 1 for s = 2^level·λ1, t = 2^level·λ2, "up" below the diagonal
 // s + t = i + j + 1. Points on the triangle's own edges are clamped into it.
-KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1, std::int64_t e2) const {
+KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1,
+                                                 std::int64_t e2) const {
   const std::int64_t area = tri_->area2, cells = std::int64_t{1} << level;
   const std::int64_t s = e1 * (std::int64_t{1} << level), t = e2 * (std::int64_t{1} << level);
   std::int64_t i = floor_div(s, area), j = floor_div(t, area);
@@ -521,7 +528,8 @@ KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1, std
 std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const {
   const std::int64_t area = tri_->area2;
   const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
-  const std::int64_t ds = de1_ * (std::int64_t{1} << c.level), dt = de2_ * (std::int64_t{1} << c.level);
+  const std::int64_t ds = de1_ * (std::int64_t{1} << c.level),
+                     dt = de2_ * (std::int64_t{1} << c.level);
   std::int64_t len = steps_inside(s, ds, c.i * area, (c.i + 1) * area);
   const std::int64_t lt = steps_inside(t, dt, c.j * area, (c.j + 1) * area);
   len = lt < len ? lt : len;
@@ -585,7 +593,7 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
       const std::int64_t nl = st[3 + k].v;
       if (nl >= 0) continue;
       const std::int64_t dark = (-nl) >> (kQuadStateFrac - kSampleFrac);  // Q.24
-      for (int c = 0; c < 3; ++c)  // Q.24 × Q.14 -> Q.40
+      for (int c = 0; c < 3; ++c)                                         // Q.24 × Q.14 -> Q.40
         colour[c] += (dark * crossing[k].weight[c]) << (kQuadStateFrac - 24 - kSampleFrac);
     }
     out[x] = Rgb8{quad_level(colour[0]), quad_level(colour[1]), quad_level(colour[2])};
@@ -598,7 +606,8 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
 
 // shade_crossing's loop for K terminators, unrolled, the same arithmetic: Q.24 × Q.14 << 2 -> Q.40.
 template <std::size_t K>
-void KbAdaptiveMethod::shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n, Rgb8* out) {
+void KbAdaptiveMethod::shade_crossings(const QuadStep st[], const Crossing* crossing,
+                                       std::int32_t n, Rgb8* out) {
   constexpr int kUp = kQuadStateFrac - 24 - kSampleFrac;
   std::int64_t w[K][3];
   std::int64_t nl[K], nld[K], nl2[K];
@@ -640,7 +649,8 @@ Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {
 // Per pixel: the exact evaluation at every pixel centre of [xa, xa + n) in row y — stepped along
 // the row where PointShader can (directional lights, area2 < 2^30: exact integer steps, so a
 // pixel gets the same value whichever span piece it starts), else formed at each pixel.
-void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
+void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n,
+                                   Rgb8* out) const {
   const auto level = [](std::int32_t v) {
     return quad_level(std::int64_t{v} * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
   };
@@ -677,7 +687,8 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
     return;
   }
   const std::int64_t e1 = lam.l[1], e2 = lam.l[2];
-  if (leaves_[0].cell.level == 0) {  // the whole triangle is one leaf (terminators, or refine's root)
+  if (leaves_[0].cell.level ==
+      0) {  // the whole triangle is one leaf (terminators, or refine's root)
     if (leaves_[0].exact)
       shade_exact(s.y, s.x0, n, out);
     else
@@ -689,7 +700,8 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
 
 // Subdivided: each piece of the span lies in one leaf cell (found through the deepest level's
 // map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
-void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const {
+void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2,
+                                    Rgb8* out) const {
   const std::int32_t n = s.x1 - s.x0;
   for (std::int32_t x = 0; x < n;) {
     const Cell finest = cell_at(kMaxLevel, e1, e2);

@@ -81,13 +81,14 @@ inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
       const q1_30 value = t.specular ? power(cos_alpha, exponent_) : cos_alpha;
       for (int c = 0; c < 3; ++c)
         acc[c] += fx::round_shift_right(std::int64_t{t.weight[c].raw()} * value.raw(),
-                                                60 - cosn::kStateFrac);
+                                        60 - cosn::kStateFrac);
       t.n = wrap_pi(t.n + t.dn);  // n + n_t, kept in [−π, π] for the CORDIC
       t.l = wrap_pi(t.l + t.dl);
     }
     out[x] = Rgb8{level_of(acc[0]), level_of(acc[1]), level_of(acc[2])};
   }
-  t_.counters->specular_evaluations += static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(terms_ / 2);
+  t_.counters->specular_evaluations +=
+      static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(terms_ / 2);
 }
 
 void KbExactMethod::shade_span(const Span& s, Rgb8* out) {

@@ -35,7 +35,7 @@ namespace tp::fw::kb {
 namespace {
 
 constexpr std::int64_t kSkipMarginRaw = std::int64_t{1} << (29 - 14);  // 2^-14 rad
-constexpr std::int64_t kMaxRate = std::int64_t{1} << 40;                // 1 rad per pixel
+constexpr std::int64_t kMaxRate = std::int64_t{1} << 40;               // 1 rad per pixel
 
 // B' = B + margin as a cosine/sine pair: beyond B from O, f(φ)·f(s) is zero (header comment).
 Support support_of(const cosn::CosnCoeffs& c) {
@@ -69,8 +69,8 @@ bool beyond_support(const Unit v[3], const Unit& o, const Support& support) {
   if (cos_r.raw() <= 0) return false;  // the cap would reach a hemisphere: no useful bound
   if (cos_r.raw() < -static_cast<std::int64_t>(support.cos.raw())) return false;  // r + B' > π
   using Q60 = fx::Q<2, 60, std::int64_t>;
-  const Q60 one_minus = Q60::from_raw(
-      (std::int64_t{1} << 60) - std::int64_t{cos_r.raw()} * cos_r.raw());  // 1 − cos²r >= 0
+  const Q60 one_minus = Q60::from_raw((std::int64_t{1} << 60) -
+                                      std::int64_t{cos_r.raw()} * cos_r.raw());  // 1 − cos²r >= 0
   const q1_30 sin_r = fx::sqrt<q1_30>(one_minus);
   const std::int64_t rhs = std::int64_t{cos_r.raw()} * support.cos.raw() -
                            std::int64_t{sin_r.raw()} * support.sin.raw();  // Q.60, |.| <= 2^60
@@ -112,8 +112,7 @@ Unit KbOneVectorMethod::halfway_of(std::size_t light, const Unit& l, const Unit&
   return m.h;
 }
 
-KbOneVectorMethod::VertexMemo& KbOneVectorMethod::vertex_of(const ShadeVertex& v,
-                                                            const Unit& o,
+KbOneVectorMethod::VertexMemo& KbOneVectorMethod::vertex_of(const ShadeVertex& v, const Unit& o,
                                                             const ShadeContext& ctx) {
   for (VertexMemo& m : vertex_memo_)
     if (m.valid && m.n == v.normal && m.o == o && m.p == v.eye && m.eye == ctx.eye) return m;
@@ -187,8 +186,8 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   return true;
 }
 
-void KbOneVectorMethod::add_term(const Unit v[3], const cosn::CosnCoeffs& c,
-                                 const Support& support, const q1_30 weight[3]) {
+void KbOneVectorMethod::add_term(const Unit v[3], const cosn::CosnCoeffs& c, const Support& support,
+                                 const q1_30 weight[3]) {
   if (weight[0].raw() == 0 && weight[1].raw() == 0 && weight[2].raw() == 0) return;  // adds 0
   if (skipping_ && beyond_support(v, o_, support)) {
     ++counters_->lights_skipped_triangle;
@@ -223,7 +222,8 @@ EdgePos KbOneVectorMethod::edge_at_row(const EdgePos& like, std::int32_t row) co
   EdgePos e = like;
   const std::int64_t from = tri_->v[like.from].sy, to = tri_->v[like.to].sy;
   const std::int64_t yc = 16 * std::int64_t{row} + 8;
-  e.t = fx::div<q1_30>(fx::int_q::from_raw(yc - from), fx::int_q::from_raw(to > from ? to - from : 1));
+  e.t = fx::div<q1_30>(fx::int_q::from_raw(yc - from),
+                       fx::int_q::from_raw(to > from ? to - from : 1));
   if (e.t.raw() < 0) e.t = q1_30::zero();
   if (e.t > q1_30::one()) e.t = q1_30::one();
   return e;
@@ -321,8 +321,8 @@ void KbOneVectorMethod::add_exact_term(const OneVectorTerm& t, const Span& s) {
   c.phi_left = angle_t::from_raw(static_cast<std::int32_t>(p.phi_left));
   c.theta = p.theta;
   c.constant = p.rate == 0;
-  const angle_t phi_first = span_phi_first(c, edge_x(*tri_, s.left), edge_x(*tri_, s.right),
-                                           pixel_centre(s.x0));
+  const angle_t phi_first =
+      span_phi_first(c, edge_x(*tri_, s.left), edge_x(*tri_, s.right), pixel_centre(s.x0));
   add_span_term(t, phi_first.raw(), p.rate, p.scale, s);
 }
 
@@ -334,10 +334,9 @@ void KbOneVectorMethod::prepare_span(const Span& s) {
     return;
   }
   // Rows of one section arrive top to bottom; anything else starts a new chunk.
-  const std::uint32_t key = static_cast<std::uint32_t>(s.left.from) |
-                            static_cast<std::uint32_t>(s.left.to) << 8 |
-                            static_cast<std::uint32_t>(s.right.from) << 16 |
-                            static_cast<std::uint32_t>(s.right.to) << 24;
+  const std::uint32_t key =
+      static_cast<std::uint32_t>(s.left.from) | static_cast<std::uint32_t>(s.left.to) << 8 |
+      static_cast<std::uint32_t>(s.right.from) << 16 | static_cast<std::uint32_t>(s.right.to) << 24;
   if (key != chunk_key_ || s.y < chunk_row_ || s.y > chunk_last_) {
     chunk_key_ = key;
     start_chunk(s);
@@ -356,8 +355,8 @@ void KbOneVectorMethod::prepare_span(const Span& s) {
   for (int j = 0; j < terms_; ++j) {
     const std::int64_t rate = quad_[j][1].value();
     const std::int64_t scales[3] = {quad_[j][2].value(), quad_[j][3].value(), quad_[j][4].value()};
-    add_span_term(term_[j], quad_[j][0].value() + fx::mul_shift_right(dx, rate, 27), rate,
-                  scales, s);
+    add_span_term(term_[j], quad_[j][0].value() + fx::mul_shift_right(dx, rate, 27), rate, scales,
+                  s);
     for (QuadY& q : quad_[j]) q.step();  // forward difference to the next row
   }
   ++chunk_row_;

@@ -60,12 +60,13 @@ std::vector<Case> random_cases(int count) {
     c.scale = static_cast<std::int32_t>(u(rng) * (1 << 30));
     const double b = to_d(c.p.b.raw()) * 1.05;
     double t0 = (2 * u(rng) - 1) * std::numbers::pi, t1 = (2 * u(rng) - 1) * std::numbers::pi;
-    if (i % 4 == 1) t0 = -b, t1 = b;          // all four break points, increasing
-    if (i % 4 == 3) t0 = b, t1 = -b;          // all four, decreasing
+    if (i % 4 == 1) t0 = -b, t1 = b;  // all four break points, increasing
+    if (i % 4 == 3) t0 = b, t1 = -b;  // all four, decreasing
     c.theta0 = std::llround(std::ldexp(t0, 29));
     c.dtheta = c.length > 1 ? std::llround(std::ldexp((t1 - t0) / (c.length - 1), 29)) : 0;
     c.dtheta = std::clamp<std::int64_t>(c.dtheta, -kMaxDThetaRaw, kMaxDThetaRaw);
-    while (std::llabs(c.theta0 + (c.length - 1) * c.dtheta) > kPiRaw) c.dtheta -= c.dtheta > 0 ? 1 : -1;
+    while (std::llabs(c.theta0 + (c.length - 1) * c.dtheta) > kPiRaw)
+      c.dtheta -= c.dtheta > 0 ? 1 : -1;
     cases.push_back(c);
   }
   return cases;
@@ -82,7 +83,8 @@ std::vector<Case> special_cases() {
         for (std::int64_t dt : {std::int64_t{0}, std::int64_t{1}, std::int64_t{-1}, b / 1000,
                                 -b / 1000, 2 * b / 4095, -2 * b / 4095, a, -b}) {
           for (int len : {1, 2, 100, kMaxSpan}) {
-            Case c{p, n, t0, std::clamp<std::int64_t>(dt, -kMaxDThetaRaw, kMaxDThetaRaw), 1 << 30, len};
+            Case c{p,       n,  t0, std::clamp<std::int64_t>(dt, -kMaxDThetaRaw, kMaxDThetaRaw),
+                   1 << 30, len};
             while (std::llabs(c.theta0 + (c.length - 1) * c.dtheta) > kPiRaw) c.dtheta /= 2;
             cases.push_back(c);
           }
@@ -103,7 +105,8 @@ void check_exact(const Case& c) {
   int seg = 0;
   QuadState st = r.segs[0].st;
   for (int x = 0; x < c.length; ++x) {
-    if (seg + 1 < r.count && r.segs[static_cast<std::size_t>(seg) + 1].x == x) st = r.segs[static_cast<std::size_t>(++seg)].st;
+    if (seg + 1 < r.count && r.segs[static_cast<std::size_t>(seg) + 1].x == x)
+      st = r.segs[static_cast<std::size_t>(++seg)].st;
     const std::int64_t theta = c.theta0 + x * c.dtheta;
     const int piece = theta <= -k.b ? 0 : theta < -k.a ? 1 : theta <= k.a ? 2 : theta < k.b ? 3 : 4;
     ASSERT_EQ(r.segs[static_cast<std::size_t>(seg)].piece, piece) << "x=" << x;
@@ -115,8 +118,8 @@ void check_exact(const Case& c) {
 
 TEST(CosnFd, ForwardDifferencingIsBitExactRandom) {
   for (const Case& c : random_cases(600)) {
-    SCOPED_TRACE(testing::Message() << "n=" << c.n << " t0=" << c.theta0 << " dt=" << c.dtheta
-                                    << " len=" << c.length);
+    SCOPED_TRACE(testing::Message()
+                 << "n=" << c.n << " t0=" << c.theta0 << " dt=" << c.dtheta << " len=" << c.length);
     check_exact(c);
     if (HasFatalFailure()) return;
   }
@@ -124,8 +127,8 @@ TEST(CosnFd, ForwardDifferencingIsBitExactRandom) {
 
 TEST(CosnFd, ForwardDifferencingIsBitExactSpecial) {
   for (const Case& c : special_cases()) {
-    SCOPED_TRACE(testing::Message() << "n=" << c.n << " t0=" << c.theta0 << " dt=" << c.dtheta
-                                    << " len=" << c.length);
+    SCOPED_TRACE(testing::Message()
+                 << "n=" << c.n << " t0=" << c.theta0 << " dt=" << c.dtheta << " len=" << c.length);
     check_exact(c);
     if (HasFatalFailure()) return;
   }

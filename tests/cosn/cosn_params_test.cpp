@@ -87,7 +87,8 @@ TEST(CosnParams, TableFitsMatchRecordedErrors) {
 
 // Between grid points (n > 200) the interpolated table stays near the optimum.
 TEST(CosnParams, InterpolatedTableBetweenGridPoints) {
-  for (int n : {201, 333, 777, 1234, 4321, 9999}) EXPECT_LE(err_of(table_params(n), n), 0.0145) << n;
+  for (int n : {201, 333, 777, 1234, 4321, 9999})
+    EXPECT_LE(err_of(table_params(n), n), 0.0145) << n;
 }
 
 // Every source is usable at compile time (materials can be baked into constant tables).

@@ -62,17 +62,21 @@ Mat4 with_entry(Mat4 m, int c, int r, std::int32_t raw) {
 
 TEST(Commands, TypedErrorsChangeNothing) {
   const Mat4 id = to_mat4(glm::dmat4(1));
-  expect_refused("viewport 0", Error::kViewportTooLarge,
-                 [](Loaded& r) { return r.dev.set_viewport(ViewportCmd{0, 10}); });
-  expect_refused("viewport 4097", Error::kViewportTooLarge,
-                 [](Loaded& r) { return r.dev.set_viewport(ViewportCmd{4097, 10}); });
+  expect_refused("viewport 0", Error::kViewportTooLarge, [](Loaded& r) {
+    return r.dev.set_viewport(ViewportCmd{0, 10});
+  });
+  expect_refused("viewport 4097", Error::kViewportTooLarge, [](Loaded& r) {
+    return r.dev.set_viewport(ViewportCmd{4097, 10});
+  });
   expect_refused("viewport format", Error::kBadArgument, [](Loaded& r) {
     return r.dev.set_viewport(ViewportCmd{10, 10, static_cast<PixelFormat>(7)});
   });
-  expect_refused("viewport too large for memory", Error::kOutOfMemory,
-                 [](Loaded& r) { return r.dev.set_viewport(ViewportCmd{4096, 4096}); });
-  expect_refused("capacity too large for memory", Error::kOutOfMemory,
-                 [](Loaded& r) { return r.dev.set_buffer_capacity(BufferCapacityCmd{100000, 10}); });
+  expect_refused("viewport too large for memory", Error::kOutOfMemory, [](Loaded& r) {
+    return r.dev.set_viewport(ViewportCmd{4096, 4096});
+  });
+  expect_refused("capacity too large for memory", Error::kOutOfMemory, [](Loaded& r) {
+    return r.dev.set_buffer_capacity(BufferCapacityCmd{100000, 10});
+  });
   expect_refused("modelview entry 2^14", Error::kOutOfRange,
                  [&](Loaded& r) { return r.dev.set_modelview(with_entry(id, 3, 0, 1 << 30)); });
   expect_refused("projection entry -2^14", Error::kOutOfRange,
@@ -91,14 +95,16 @@ TEST(Commands, TypedErrorsChangeNothing) {
       return r.dev.set_material(m);
     };
   };
-  expect_refused("colour > 1", Error::kOutOfRange, material([](MaterialCmd& m) { m.color[1] = q30(1.5); }));
+  expect_refused("colour > 1", Error::kOutOfRange,
+                 material([](MaterialCmd& m) { m.color[1] = q30(1.5); }));
   expect_refused("ka < 0", Error::kOutOfRange, material([](MaterialCmd& m) { m.ka = q30(-0.1); }));
   expect_refused("n = 0", Error::kOutOfRange, material([](MaterialCmd& m) { m.n = 0; }));
-  expect_refused("n too large", Error::kOutOfRange, material([](MaterialCmd& m) { m.n = kMaxExponent + 1; }));
+  expect_refused("n too large", Error::kOutOfRange,
+                 material([](MaterialCmd& m) { m.n = kMaxExponent + 1; }));
   expect_refused("a >= b", Error::kOutOfRange, material([](MaterialCmd& m) {
-    m.a = q2_29::from_raw(1 << 28);
-    m.b = q2_29::from_raw(1 << 27);
-  }));
+                   m.a = q2_29::from_raw(1 << 28);
+                   m.b = q2_29::from_raw(1 << 27);
+                 }));
   const auto light = [](auto edit) {
     return [edit](Loaded& r) {
       LightCmd l;
@@ -110,16 +116,21 @@ TEST(Commands, TypedErrorsChangeNothing) {
       return r.dev.set_light(l);
     };
   };
-  expect_refused("light 16", Error::kTooManyLights, light([](LightCmd& l) { l.index = kMaxLights; }));
-  expect_refused("light type", Error::kBadArgument, light([](LightCmd& l) { l.type = static_cast<LightType>(3); }));
-  expect_refused("light colour < 0", Error::kOutOfRange, light([](LightCmd& l) { l.color[2] = q16(-1); }));
-  expect_refused("light colour > 16", Error::kOutOfRange, light([](LightCmd& l) { l.color[0] = q16(17); }));
-  expect_refused("direction not unit", Error::kNotUnit,
-                 light([](LightCmd& l) { l.direction = Vec3u{q30(0), q30(0.1), q30(0.999)}; }));
+  expect_refused("light 16", Error::kTooManyLights,
+                 light([](LightCmd& l) { l.index = kMaxLights; }));
+  expect_refused("light type", Error::kBadArgument,
+                 light([](LightCmd& l) { l.type = static_cast<LightType>(3); }));
+  expect_refused("light colour < 0", Error::kOutOfRange,
+                 light([](LightCmd& l) { l.color[2] = q16(-1); }));
+  expect_refused("light colour > 16", Error::kOutOfRange,
+                 light([](LightCmd& l) { l.color[0] = q16(17); }));
+  expect_refused("direction not unit", Error::kNotUnit, light([](LightCmd& l) {
+                   l.direction = Vec3u{q30(0), q30(0.1), q30(0.999)};
+                 }));
   expect_refused("point out of range", Error::kOutOfRange, light([](LightCmd& l) {
-    l.type = LightType::kPoint;
-    l.position = Vec3q16{q16(0), q16(20000), q16(0)};
-  }));
+                   l.type = LightType::kPoint;
+                   l.position = Vec3q16{q16(0), q16(20000), q16(0)};
+                 }));
   // Ids that no method implements yet (update as methods land): 0, the reserved 4, 5, 7, 8, and
   // ids past the enum.
   for (std::uint32_t id : {0u, 4u, 5u, 7u, 8u, 10u, 99u})
@@ -143,12 +154,15 @@ TEST(Commands, TypedErrorsChangeNothing) {
     std::vector<std::uint32_t> i(10, 0);
     return r.dev.upload_indices(250, i);
   });
-  expect_refused("draw count % 3", Error::kBadArgument, [](Loaded& r) { return r.dev.draw(DrawCmd{0, 4}); });
+  expect_refused("draw count % 3", Error::kBadArgument, [](Loaded& r) {
+    return r.dev.draw(DrawCmd{0, 4});
+  });
   expect_refused("draw beyond indices", Error::kIndexOutOfRange, [](Loaded& r) {
     return r.dev.draw(DrawCmd{static_cast<std::uint32_t>(r.mesh.indices.size()) - 3, 6});
   });
-  expect_refused("draw range overflow", Error::kIndexOutOfRange,
-                 [](Loaded& r) { return r.dev.draw(DrawCmd{0xfffffffdu, 6}); });
+  expect_refused("draw range overflow", Error::kIndexOutOfRange, [](Loaded& r) {
+    return r.dev.draw(DrawCmd{0xfffffffdu, 6});
+  });
 }
 
 TEST(Commands, BadIndexAndTransformOverflowRefuseTheDraw) {
@@ -201,22 +215,25 @@ std::vector<std::uint32_t> stream_for(const Mesh& m, const glm::dmat4& proj, con
   w.insert(w.end(), {command_header(Opcode::kSetMethod, 1), 3});
   mat(Opcode::kSetProjection, proj);
   mat(Opcode::kSetModelView, mv);
-  w.insert(w.end(), {command_header(Opcode::kSetLight, 11), 2, 2, raw(q16(1)), raw(q16(1)), raw(q16(1)), 0, 0, 0,
-                     raw(q16(1)), raw(q16(2)), raw(q16(3))});
-  w.push_back(command_header(Opcode::kUploadVertices, 2 + 6 * static_cast<std::uint32_t>(m.positions.size())));
+  w.insert(w.end(), {command_header(Opcode::kSetLight, 11), 2, 2, raw(q16(1)), raw(q16(1)),
+                     raw(q16(1)), 0, 0, 0, raw(q16(1)), raw(q16(2)), raw(q16(3))});
+  w.push_back(command_header(Opcode::kUploadVertices,
+                             2 + 6 * static_cast<std::uint32_t>(m.positions.size())));
   w.push_back(0);
   w.push_back(static_cast<std::uint32_t>(m.positions.size()));
   for (std::size_t i = 0; i < m.positions.size(); ++i) {
     const Vertex v = vertex(m.positions[i], m.normals[i]);
-    w.insert(w.end(), {raw(v.position.x), raw(v.position.y), raw(v.position.z), raw(v.normal.x), raw(v.normal.y),
-                       raw(v.normal.z)});
+    w.insert(w.end(), {raw(v.position.x), raw(v.position.y), raw(v.position.z), raw(v.normal.x),
+                       raw(v.normal.y), raw(v.normal.z)});
   }
-  w.push_back(command_header(Opcode::kUploadIndices, 2 + static_cast<std::uint32_t>(m.indices.size())));
+  w.push_back(
+      command_header(Opcode::kUploadIndices, 2 + static_cast<std::uint32_t>(m.indices.size())));
   w.push_back(0);
   w.push_back(static_cast<std::uint32_t>(m.indices.size()));
   w.insert(w.end(), m.indices.begin(), m.indices.end());
-  w.insert(w.end(), {command_header(Opcode::kClear, 1), 0, command_header(Opcode::kDraw, 2), 0,
-                     static_cast<std::uint32_t>(m.indices.size()), command_header(Opcode::kEndFrame, 0)});
+  w.insert(w.end(),
+           {command_header(Opcode::kClear, 1), 0, command_header(Opcode::kDraw, 2), 0,
+            static_cast<std::uint32_t>(m.indices.size()), command_header(Opcode::kEndFrame, 0)});
   return w;
 }
 
@@ -252,20 +269,26 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
   expect_stream_refused("opcode 16", Error::kBadOpcode, {16});
   expect_stream_refused("short eye", Error::kBadLength, {command_header(Opcode::kSetEye, 0)});
   expect_stream_refused("long eye", Error::kBadLength, {command_header(Opcode::kSetEye, 2), 0, 0});
-  expect_stream_refused("truncated payload", Error::kBadLength, {command_header(Opcode::kSetModelView, 16), 1, 2});
-  expect_stream_refused("vertex count mismatch", Error::kBadLength,
-                        {command_header(Opcode::kUploadVertices, 8), 0, 2, 0, 0, 0, 0, 0, 1u << 30});
-  expect_stream_refused("index count mismatch", Error::kBadLength, {command_header(Opcode::kUploadIndices, 3), 0, 2, 1});
+  expect_stream_refused("truncated payload", Error::kBadLength,
+                        {command_header(Opcode::kSetModelView, 16), 1, 2});
+  expect_stream_refused(
+      "vertex count mismatch", Error::kBadLength,
+      {command_header(Opcode::kUploadVertices, 8), 0, 2, 0, 0, 0, 0, 0, 1u << 30});
+  expect_stream_refused("index count mismatch", Error::kBadLength,
+                        {command_header(Opcode::kUploadIndices, 3), 0, 2, 1});
   expect_stream_refused("flag 2", Error::kBadArgument, {command_header(Opcode::kSetCulling, 1), 2});
-  expect_stream_refused("viewport flag 5", Error::kBadArgument, {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 5});
-  expect_stream_refused("method 7 (reserved)", Error::kUnknownMethod, {command_header(Opcode::kSetMethod, 1), 7});
+  expect_stream_refused("viewport flag 5", Error::kBadArgument,
+                        {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 5});
+  expect_stream_refused("method 7 (reserved)", Error::kUnknownMethod,
+                        {command_header(Opcode::kSetMethod, 1), 7});
   // A vertex upload whose second chunk holds a bad normal: the first 64 vertices must not land.
   std::vector<std::uint32_t> up{command_header(Opcode::kUploadVertices, 2 + 6 * 64), 0, 64};
   for (int i = 0; i < 64; ++i) up.insert(up.end(), {0, 0, 0, 0, 0, i == 63 ? 5u : (1u << 30)});
   expect_stream_refused("bad normal in a long upload", Error::kNotUnit, up);
   // Commands before the failing one stay applied; the failing one does not.
   Loaded rig;
-  const std::vector<std::uint32_t> w{command_header(Opcode::kSetCulling, 1), 0, command_header(Opcode::kSetEye, 1), 7};
+  const std::vector<std::uint32_t> w{command_header(Opcode::kSetCulling, 1), 0,
+                                     command_header(Opcode::kSetEye, 1), 7};
   EXPECT_EQ(rig.dev.execute(w), Error::kBadArgument);
   EXPECT_EQ(rig.dev.words_consumed(), 2u);
   EXPECT_FALSE(rig.dev.state().cull_back_faces);
@@ -273,10 +296,12 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
 }
 
 TEST(Framebuffer, Rgb565KeepsTopBitsOfRgb888) {
-  Rig a(40, 30, 64, 256, false, PixelFormat::kRgb888), b(40, 30, 64, 256, false, PixelFormat::kRgb565);
+  Rig a(40, 30, 64, 256, false, PixelFormat::kRgb888),
+      b(40, 30, 64, 256, false, PixelFormat::kRgb565);
   const Mesh m = octasphere(1);
   for (Rig* r : {&a, &b}) {
-    ASSERT_EQ(r->dev.set_projection(to_mat4(glm::ortho(-1.5, 1.5, -1.2, 1.2, -3.0, 3.0))), Error::kOk);
+    ASSERT_EQ(r->dev.set_projection(to_mat4(glm::ortho(-1.5, 1.5, -1.2, 1.2, -3.0, 3.0))),
+              Error::kOk);
     ASSERT_EQ(r->dev.set_method(Method::kPhong), Error::kOk);
     LightCmd l;
     l.index = 0;

@@ -13,12 +13,13 @@ namespace {
 Mesh two_quads(double z_first, double z_second) {
   Mesh m;
   for (double z : {z_first, z_second})
-    for (glm::dvec3 p : {glm::dvec3(-0.8, -0.8, z), glm::dvec3(0.8, -0.8, z), glm::dvec3(0.8, 0.8, z),
-                         glm::dvec3(-0.8, 0.8, z)}) {
+    for (glm::dvec3 p : {glm::dvec3(-0.8, -0.8, z), glm::dvec3(0.8, -0.8, z),
+                         glm::dvec3(0.8, 0.8, z), glm::dvec3(-0.8, 0.8, z)}) {
       m.positions.push_back(p);
       m.normals.push_back({0, 0, 1});
     }
-  for (std::uint32_t b : {0u, 4u}) m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+  for (std::uint32_t b : {0u, 4u})
+    m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
   return m;
 }
 
@@ -52,9 +53,9 @@ Rgb8 centre_after(double z_first, double z_second) {
 
 TEST(Depth, NearerWinsInEitherOrder) {
   // Identity projection: NDC z = model z, smaller is nearer.
-  EXPECT_EQ(centre_after(-0.5, 0.5).r, 255);  // first is nearer: stays red
-  EXPECT_EQ(centre_after(0.5, -0.5).b, 255);  // second is nearer: becomes blue
-  EXPECT_EQ(centre_after(0.25, 0.25).r, 255); // equal depth: strictly-less keeps the first
+  EXPECT_EQ(centre_after(-0.5, 0.5).r, 255);   // first is nearer: stays red
+  EXPECT_EQ(centre_after(0.5, -0.5).b, 255);   // second is nearer: becomes blue
+  EXPECT_EQ(centre_after(0.25, 0.25).r, 255);  // equal depth: strictly-less keeps the first
 }
 
 TEST(Depth, WordMappingAndClear) {
@@ -82,7 +83,8 @@ TEST(Depth, DepthTestedSphereWithoutCullingEqualsCulled) {
     Rig rig(80, 64);
     auto& d = rig.dev;
     ASSERT_EQ(d.set_projection(to_mat4(glm::perspective(0.9, 80.0 / 64.0, 1.0, 10.0))), Error::kOk);
-    ASSERT_EQ(d.set_modelview(to_mat4(glm::translate(glm::dmat4(1), glm::dvec3(0.2, 0.1, -3.5)))), Error::kOk);
+    ASSERT_EQ(d.set_modelview(to_mat4(glm::translate(glm::dmat4(1), glm::dvec3(0.2, 0.1, -3.5)))),
+              Error::kOk);
     ASSERT_EQ(d.set_culling(cull == 1), Error::kOk);
     ASSERT_EQ(d.set_method(Method::kGouraud), Error::kOk);
     LightCmd l;

@@ -14,8 +14,12 @@
 
 namespace tp::fw::test {
 
-inline q15_16 q16(double v) { return q15_16::from_raw(static_cast<std::int32_t>(std::llround(v * 65536.0))); }
-inline q1_30 q30(double v) { return q1_30::from_raw(static_cast<std::int32_t>(std::llround(v * 1073741824.0))); }
+inline q15_16 q16(double v) {
+  return q15_16::from_raw(static_cast<std::int32_t>(std::llround(v * 65536.0)));
+}
+inline q1_30 q30(double v) {
+  return q1_30::from_raw(static_cast<std::int32_t>(std::llround(v * 1073741824.0)));
+}
 inline double d16(q15_16 v) { return v.raw() / 65536.0; }
 inline double d30(q1_30 v) { return v.raw() / 1073741824.0; }
 
@@ -41,15 +45,15 @@ struct Mesh {
 // centred at c, normal = direction from the centre. Triangles are CCW seen from outside.
 inline Mesh octasphere(int levels, double r = 1.0, glm::dvec3 c = {0, 0, 0}) {
   std::vector<glm::dvec3> tris = {
-      {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 1},
-      {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, -1, 0}, {1, 0, 0}, {0, 0, 1},
-      {0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1},
-      {0, -1, 0}, {-1, 0, 0}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+      {1, 0, 0}, {0, 1, 0},  {0, 0, 1},  {0, 1, 0},  {-1, 0, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0},
+      {0, 0, 1}, {0, -1, 0}, {1, 0, 0},  {0, 0, 1},  {0, 1, 0},  {1, 0, 0}, {0, 0, -1}, {-1, 0, 0},
+      {0, 1, 0}, {0, 0, -1}, {0, -1, 0}, {-1, 0, 0}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
   for (int l = 0; l < levels; ++l) {
     std::vector<glm::dvec3> next;
     for (std::size_t i = 0; i < tris.size(); i += 3) {
       const glm::dvec3 a = tris[i], b = tris[i + 1], cc = tris[i + 2];
-      const glm::dvec3 ab = glm::normalize(a + b), bc = glm::normalize(b + cc), ca = glm::normalize(cc + a);
+      const glm::dvec3 ab = glm::normalize(a + b), bc = glm::normalize(b + cc),
+                       ca = glm::normalize(cc + a);
       for (const glm::dvec3& v : {a, ab, ca, ab, b, bc, ca, bc, cc, ab, bc, ca}) next.push_back(v);
     }
     tris = next;
@@ -60,7 +64,11 @@ inline Mesh octasphere(int levels, double r = 1.0, glm::dvec3 c = {0, 0, 0}) {
     std::uint32_t idx = 0;
     bool found = false;
     for (std::uint32_t k = 0; k < m.normals.size(); ++k)
-      if (glm::length(m.normals[k] - d) < 1e-12) { idx = k; found = true; break; }
+      if (glm::length(m.normals[k] - d) < 1e-12) {
+        idx = k;
+        found = true;
+        break;
+      }
     if (!found) {
       idx = static_cast<std::uint32_t>(m.normals.size());
       m.normals.push_back(d);
@@ -75,9 +83,12 @@ inline Mesh octasphere(int levels, double r = 1.0, glm::dvec3 c = {0, 0, 0}) {
 struct Rig {
   std::vector<std::byte> memory;
   Device dev;
-  explicit Rig(std::uint32_t w, std::uint32_t h, std::uint32_t max_v = 4096, std::uint32_t max_i = 3 * 8192,
-               bool counts = true, PixelFormat fmt = PixelFormat::kRgb888)
-      : memory(Device::memory_required(ViewportCmd{w, h, fmt, counts}, BufferCapacityCmd{max_v, max_i}) + 8),
+  explicit Rig(std::uint32_t w, std::uint32_t h, std::uint32_t max_v = 4096,
+               std::uint32_t max_i = 3 * 8192, bool counts = true,
+               PixelFormat fmt = PixelFormat::kRgb888)
+      : memory(Device::memory_required(ViewportCmd{w, h, fmt, counts},
+                                       BufferCapacityCmd{max_v, max_i}) +
+               8),
         dev(memory) {
     check(dev.set_buffer_capacity(BufferCapacityCmd{max_v, max_i}));
     check(dev.set_viewport(ViewportCmd{w, h, fmt, counts}));
@@ -87,7 +98,8 @@ struct Rig {
   }
   Error load(const Mesh& m) {
     std::vector<Vertex> v;
-    for (std::size_t i = 0; i < m.positions.size(); ++i) v.push_back(vertex(m.positions[i], m.normals[i]));
+    for (std::size_t i = 0; i < m.positions.size(); ++i)
+      v.push_back(vertex(m.positions[i], m.normals[i]));
     Error e = dev.upload_vertices(0, v);
     if (e != Error::kOk) return e;
     return dev.upload_indices(0, m.indices);

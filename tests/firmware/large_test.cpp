@@ -22,7 +22,8 @@ Mesh grid(int cols, int rows, double extent, double z_tilt) {
   const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (cols + 1) + i); };
   for (int j = 0; j < rows; ++j)
     for (int i = 0; i < cols; ++i)
-      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j),
+                                         at(i + 1, j + 1), at(i, j + 1)});
   return m;
 }
 

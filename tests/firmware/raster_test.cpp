@@ -57,8 +57,8 @@ struct CoverResult {
 
 // Renders the mesh with depth test off and checks each pixel's write count against the
 // silhouette (convex hull of the projected vertices; the meshes here are convex).
-CoverResult check_convex_cover(Rig& rig, const Mesh& m, const glm::dmat4& mv, const glm::dmat4& proj,
-                               bool cull, int expected_inside) {
+CoverResult check_convex_cover(Rig& rig, const Mesh& m, const glm::dmat4& mv,
+                               const glm::dmat4& proj, bool cull, int expected_inside) {
   auto& d = rig.dev;
   const auto w = d.state().viewport.width, h = d.state().viewport.height;
   EXPECT_EQ(d.set_modelview(to_mat4(mv)), Error::kOk);
@@ -94,7 +94,8 @@ TEST(Cover, SphereEveryInteriorPixelOnceWithCulling) {
   const Mesh m = octasphere(3);  // 512 triangles
   const glm::dmat4 proj = glm::ortho(-1.6, 1.6, -1.2, 1.2, -10.0, 10.0);
   for (int rot = 0; rot < 8; ++rot) {
-    const glm::dmat4 mv = glm::rotate(glm::dmat4(1), 0.37 * rot, glm::normalize(glm::dvec3(1, 2, 0.5)));
+    const glm::dmat4 mv =
+        glm::rotate(glm::dmat4(1), 0.37 * rot, glm::normalize(glm::dvec3(1, 2, 0.5)));
     const CoverResult r = check_convex_cover(rig, m, mv, proj, true, 1);
     EXPECT_GT(r.inside, 5000);
     EXPECT_EQ(r.inside_bad, 0) << "rotation " << rot;
@@ -120,9 +121,9 @@ TEST(Cover, SphereStraddlingScreenEdgesAndGuardBand) {
   const Mesh m = octasphere(3);
   const glm::dmat4 proj = glm::ortho(-1.0, 1.0, -0.75, 0.75, -1000.0, 1000.0);
   for (double scale : {1.0, 5.0, 150.0}) {
-    const glm::dmat4 mv = glm::scale(glm::translate(glm::dmat4(1), glm::dvec3(0.9, 0.7, 0.0)),
-                                     glm::dvec3(scale)) *
-                          glm::rotate(glm::dmat4(1), 0.3, glm::dvec3(0, 1, 0));
+    const glm::dmat4 mv =
+        glm::scale(glm::translate(glm::dmat4(1), glm::dvec3(0.9, 0.7, 0.0)), glm::dvec3(scale)) *
+        glm::rotate(glm::dmat4(1), 0.3, glm::dvec3(0, 1, 0));
     const CoverResult r = check_convex_cover(rig, m, mv, proj, true, 1);
     EXPECT_GT(r.inside, 1000);
     EXPECT_EQ(r.inside_bad, 0) << "scale " << scale;
@@ -146,7 +147,8 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
   const auto cross = [](I2 a, I2 b) { return a.x * b.y - a.y * b.x; };
   std::uint64_t guard_clipped = 0;
   for (int trial = 0; trial < 60; ++trial) {
-    const I2 c{static_cast<long>(16 * W * (0.2 + 0.6 * u(rng))), static_cast<long>(16 * H * (0.2 + 0.6 * u(rng)))};
+    const I2 c{static_cast<long>(16 * W * (0.2 + 0.6 * u(rng))),
+               static_cast<long>(16 * H * (0.2 + 0.6 * u(rng)))};
     std::vector<double> angles;
     for (int i = 0; i < 3; ++i) angles.push_back(0.1 + i * 2 * M_PI / 3);  // every gap < pi
     const int n = static_cast<int>(u(rng) * 40);
@@ -161,7 +163,8 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
       rim.push_back(p);
       if (u(rng) < 0.3) {  // a zero-area piece along the same ray, then a sliver
         rim.push_back(p * std::int64_t{3});
-        const I2 d = std::abs(p.x) > std::abs(p.y) ? I2{0, p.x > 0 ? 1 : -1} : I2{p.y > 0 ? -1 : 1, 0};
+        const I2 d =
+            std::abs(p.x) > std::abs(p.y) ? I2{0, p.x > 0 ? 1 : -1} : I2{p.y > 0 ? -1 : 1, 0};
         rim.push_back(p * std::int64_t{2} + d);
       }
     }
@@ -174,7 +177,8 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
     for (const I2& p : rim) m.positions.push_back(to_ndc(c + p));
     m.normals.assign(m.positions.size(), {0, 0, 1});
     const auto k = static_cast<std::uint32_t>(rim.size());
-    for (std::uint32_t i = 0; i < k; ++i) m.indices.insert(m.indices.end(), {0u, 1 + i, 1 + (i + 1) % k});
+    for (std::uint32_t i = 0; i < k; ++i)
+      m.indices.insert(m.indices.end(), {0u, 1 + i, 1 + (i + 1) % k});
     auto& d = rig.dev;
     ASSERT_EQ(d.set_modelview(to_mat4(glm::dmat4(1))), Error::kOk);
     ASSERT_EQ(d.set_projection(to_mat4(glm::dmat4(1))), Error::kOk);
@@ -197,8 +201,8 @@ TEST(Cover, RandomFansWithSliversAndZeroArea) {
           if (e0 >= 0 && e1 >= 0 && e2 >= 0 && (e0 == 0 || e1 == 0 || e2 == 0)) on_edge = true;
         }
         const int cnt = rig.count(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
-        const bool ok = cnt <= 1 && (!strictly_inside || cnt == 1) &&
-                        (strictly_inside || on_edge || cnt == 0);
+        const bool ok =
+            cnt <= 1 && (!strictly_inside || cnt == 1) && (strictly_inside || on_edge || cnt == 0);
         if (!ok) {
           ++bad;
           ADD_FAILURE() << "pixel " << x << "," << y << " count " << cnt;
@@ -225,7 +229,8 @@ TEST(Clip, GroundPlaneThroughTheEye) {
   m.indices = {0, 1, 2, 0, 2, 3};  // CCW seen from above
   auto& d = rig.dev;
   ASSERT_EQ(d.set_modelview(to_mat4(glm::dmat4(1))), Error::kOk);
-  ASSERT_EQ(d.set_projection(to_mat4(glm::perspective(M_PI / 2, double(W) / H, 0.1, 200.0))), Error::kOk);
+  ASSERT_EQ(d.set_projection(to_mat4(glm::perspective(M_PI / 2, double(W) / H, 0.1, 200.0))),
+            Error::kOk);
   ASSERT_EQ(d.set_depth_test(false), Error::kOk);
   ASSERT_EQ(d.set_method(Method::kFlat), Error::kOk);
   ASSERT_EQ(d.clear(Rgb8{0, 0, 0}), Error::kOk);

@@ -86,7 +86,8 @@ struct Diff {
 // pixels inside the (double) triangle with the double computation of the same method.
 // snap: interpolate from vertex positions snapped to 1/16 pixel like the device's (otherwise
 // the exact projected positions, as a reference renderer that does not snap would).
-Diff compare(Method method, const Scene& s, const glm::dmat4& mv, const glm::dmat4& proj, bool snap) {
+Diff compare(Method method, const Scene& s, const glm::dmat4& mv, const glm::dmat4& proj,
+             bool snap) {
   const std::uint32_t W = 96, H = 80;
   Rig rig(W, H);
   Mesh m;
@@ -121,7 +122,8 @@ Diff compare(Method method, const Scene& s, const glm::dmat4& mv, const glm::dma
   for (std::uint32_t y = 0; y < H; ++y)
     for (std::uint32_t x = 0; x < W; ++x) {
       const glm::dvec2 q{x + 0.5, y + 0.5};
-      double lam[3] = {cross2(e.screen[1], e.screen[2], q) / area, cross2(e.screen[2], e.screen[0], q) / area,
+      double lam[3] = {cross2(e.screen[1], e.screen[2], q) / area,
+                       cross2(e.screen[2], e.screen[0], q) / area,
                        cross2(e.screen[0], e.screen[1], q) / area};
       // Half a pixel inside every edge (in barycentric terms, roughly): away from coverage
       // differences caused by snapping.
@@ -154,8 +156,8 @@ Diff compare(Method method, const Scene& s, const glm::dmat4& mv, const glm::dma
       d.off += std::max({diffs[0], diffs[1], diffs[2]}) > 0 ? 1 : 0;
       ++d.pixels;
     }
-  std::printf("method %d snap %d: %ld pixels, max |diff| %d levels, %ld pixels off\n", static_cast<int>(method),
-              snap ? 1 : 0, d.pixels, d.max, d.off);
+  std::printf("method %d snap %d: %ld pixels, max |diff| %d levels, %ld pixels off\n",
+              static_cast<int>(method), snap ? 1 : 0, d.pixels, d.max, d.off);
   return d;
 }
 

@@ -82,84 +82,70 @@ inline long double ld_rsqrt(long double a) { return 1.0L / std::sqrt(a); }
 inline std::vector<Case> arith_cases() {
   using std::int64_t;
   std::vector<Case> c;
-  c.push_back({"div<Q7.8>(Q7.8, Q7.8)", "all 2^16 num x 16-bit edge den",
-               [] {
+  c.push_back({"div<Q7.8>(Q7.8, Q7.8)", "all 2^16 num x 16-bit edge den", [] {
                  return measure_binary<q7_8, q7_8, q7_8>(
                      exhaustive16(), edge32(-32768, 32767),
                      [](q7_8 a, q7_8 b) { return div<q7_8>(a, b); }, ld_div);
                }});
-  c.push_back({"div<Q7.8>(Q7.8, Q7.8)", "16-bit edge num x all 2^16 den",
-               [] {
+  c.push_back({"div<Q7.8>(Q7.8, Q7.8)", "16-bit edge num x all 2^16 den", [] {
                  return measure_binary<q7_8, q7_8, q7_8>(
                      edge32(-32768, 32767), exhaustive16(),
                      [](q7_8 a, q7_8 b) { return div<q7_8>(a, b); }, ld_div);
                }});
-  c.push_back({"div<Q15.16>(Q15.16, Q15.16)", "32-bit edge x edge pairs",
-               [] {
+  c.push_back({"div<Q15.16>(Q15.16, Q15.16)", "32-bit edge x edge pairs", [] {
                  return measure_binary<q15_16, q15_16, q15_16>(
-                     edge32(), edge32(),
-                     [](q15_16 a, q15_16 b) { return div<q15_16>(a, b); }, ld_div);
+                     edge32(), edge32(), [](q15_16 a, q15_16 b) { return div<q15_16>(a, b); },
+                     ld_div);
                }});
-  c.push_back({"div<Q15.16>(Q15.16, Q15.16)", "10^6 random pairs",
-               [] {
+  c.push_back({"div<Q15.16>(Q15.16, Q15.16)", "10^6 random pairs", [] {
                  return measure_pairs<q15_16, q15_16, q15_16>(
                      random32(1000000), random32(1000000, INT32_MIN, INT32_MAX, 7u),
                      [](q15_16 a, q15_16 b) { return div<q15_16>(a, b); }, ld_div);
                }});
-  c.push_back({"div<Q1.30>(Q1.30, Q15.16)", "32-bit edge x edge pairs",
-               [] {
+  c.push_back({"div<Q1.30>(Q1.30, Q15.16)", "32-bit edge x edge pairs", [] {
                  return measure_binary<q1_30, q1_30, q15_16>(
-                     edge32(), edge32(),
-                     [](q1_30 a, q15_16 b) { return div<q1_30>(a, b); }, ld_div);
+                     edge32(), edge32(), [](q1_30 a, q15_16 b) { return div<q1_30>(a, b); },
+                     ld_div);
                }});
-  c.push_back({"mul_sat<Q15.16>(Q15.16, Q15.16)", "32-bit edge x edge pairs",
-               [] {
+  c.push_back({"mul_sat<Q15.16>(Q15.16, Q15.16)", "32-bit edge x edge pairs", [] {
                  return measure_binary<q15_16, q15_16, q15_16>(
-                     edge32(), edge32(),
-                     [](q15_16 a, q15_16 b) { return mul_sat<q15_16>(a, b); },
+                     edge32(), edge32(), [](q15_16 a, q15_16 b) { return mul_sat<q15_16>(a, b); },
                      [](long double a, long double b) { return a * b; });
                }});
-  c.push_back({"sqrt<Q7.8>(Q7.8)", "all 2^15 positive inputs",
-               [] {
+  c.push_back({"sqrt<Q7.8>(Q7.8)", "all 2^15 positive inputs", [] {
                  return measure_unary<q7_8, q7_8>(
                      positive(exhaustive16()), [](q7_8 x) { return sqrt<q7_8>(x); }, ld_sqrt);
                }});
-  c.push_back({"sqrt<Q1.14>(Q1.14)", "all 2^15 positive inputs",
-               [] {
+  c.push_back({"sqrt<Q1.14>(Q1.14)", "all 2^15 positive inputs", [] {
                  return measure_unary<q1_14, q1_14>(
                      positive(exhaustive16()), [](q1_14 x) { return sqrt<q1_14>(x); }, ld_sqrt);
                }});
-  c.push_back({"sqrt<Q15.16>(Q15.16)", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"sqrt<Q15.16>(Q15.16)", "32-bit edges + 10^6 random", [] {
                  auto in = positive(edge32());
                  auto r = random_log32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
                  return measure_unary<q15_16, q15_16>(
                      in, [](q15_16 x) { return sqrt<q15_16>(x); }, ld_sqrt);
                }});
-  c.push_back({"sqrt<Q1.30>(Q1.30)", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"sqrt<Q1.30>(Q1.30)", "32-bit edges + 10^6 random", [] {
                  auto in = positive(edge32());
                  auto r = random_log32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
                  return measure_unary<q1_30, q1_30>(
                      in, [](q1_30 x) { return sqrt<q1_30>(x); }, ld_sqrt);
                }});
-  c.push_back({"rsqrt<Q4.11>(Q7.8)", "all 2^15 positive inputs",
-               [] {
+  c.push_back({"rsqrt<Q4.11>(Q7.8)", "all 2^15 positive inputs", [] {
                  return measure_unary<q4_11, q7_8>(
                      positive(exhaustive16()), [](q7_8 x) { return rsqrt<q4_11>(x); }, ld_rsqrt);
                }});
-  c.push_back({"rsqrt<Q15.16>(Q15.16)", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"rsqrt<Q15.16>(Q15.16)", "32-bit edges + 10^6 random", [] {
                  auto in = positive(edge32());
                  auto r = random_log32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
                  return measure_unary<q15_16, q15_16>(
                      in, [](q15_16 x) { return rsqrt<q15_16>(x); }, ld_rsqrt);
                }});
-  c.push_back({"rsqrt<Q1.30>(Q15.16)", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"rsqrt<Q1.30>(Q15.16)", "32-bit edges + 10^6 random", [] {
                  auto in = positive(edge32());
                  auto r = random_log32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
@@ -195,8 +181,8 @@ inline void ld_normalize(long double x, long double y, long double z, long doubl
 // x over all 2^16 raws of Q1.14 with (y, z) from a few fixed pairs (zero vector skipped).
 inline std::vector<Vec3<q1_14>> vecs16() {
   std::vector<Vec3<q1_14>> v;
-  const std::int64_t yz[][2] = {{0, 0}, {1, 0}, {-16384, 0}, {5000, -7000}, {32767, -32768},
-                                {123, 4567}, {-2, 1}};
+  const std::int64_t yz[][2] = {{0, 0},          {1, 0},      {-16384, 0}, {5000, -7000},
+                                {32767, -32768}, {123, 4567}, {-2, 1}};
   for (auto [y, z] : yz)
     for (std::int64_t x : exhaustive16()) {
       if (x == 0 && y == 0 && z == 0) continue;
@@ -226,29 +212,25 @@ inline std::vector<Vec3<q1_30>> vecs32(std::size_t n) {
 
 inline std::vector<Case> vec_cases() {
   std::vector<Case> c;
-  c.push_back({"normalize<Q1.14>(Vec3<Q1.14>)", "x: all 2^16, 7 (y,z) pairs",
-               [] {
+  c.push_back({"normalize<Q1.14>(Vec3<Q1.14>)", "x: all 2^16, 7 (y,z) pairs", [] {
                  return measure_vec<q1_14>(
                      vecs16(), [](Vec3<q1_14> v) { return normalize<q1_14>(v); }, ld_normalize);
                }});
-  c.push_back({"normalize<Q1.30>(Vec3<Q1.30>)", "32-bit: 10^6 random + small + edges",
-               [] {
+  c.push_back({"normalize<Q1.30>(Vec3<Q1.30>)", "32-bit: 10^6 random + small + edges", [] {
                  return measure_vec<q1_30>(
                      vecs32(1000000), [](Vec3<q1_30> v) { return normalize<q1_30>(v); },
                      ld_normalize);
                }});
-  c.push_back({"dot<Q1.14>(Vec3<Q1.14>, unit)", "x: all 2^16, 7 (y,z) pairs",
-               [] {
+  c.push_back({"dot<Q1.14>(Vec3<Q1.14>, unit)", "x: all 2^16, 7 (y,z) pairs", [] {
                  ErrStats s;
                  const Vec3<q1_14> u{q_raw<q1_14>(9459), q_raw<q1_14>(-9459), q_raw<q1_14>(9459)};
                  for (const auto& v : vecs16())
                    s.add(err_lsb(dot<q1_14>(v, u), to_ld(v.x) * to_ld(u.x) +
-                                                        to_ld(v.y) * to_ld(u.y) +
-                                                        to_ld(v.z) * to_ld(u.z)));
+                                                       to_ld(v.y) * to_ld(u.y) +
+                                                       to_ld(v.z) * to_ld(u.z)));
                  return s;
                }});
-  c.push_back({"dot<Q1.30>(Vec3<Q1.30>, Vec3<Q1.30>)", "32-bit random + edge pairs",
-               [] {
+  c.push_back({"dot<Q1.30>(Vec3<Q1.30>, Vec3<Q1.30>)", "32-bit random + edge pairs", [] {
                  ErrStats s;
                  const auto vs = vecs32(300000);
                  for (std::size_t i = 0; i + 1 < vs.size(); ++i) {
@@ -259,8 +241,7 @@ inline std::vector<Case> vec_cases() {
                  }
                  return s;
                }});
-  c.push_back({"cross<Q1.30>(Vec3<Q1.30>, Vec3<Q1.30>)", "32-bit random + edge pairs",
-               [] {
+  c.push_back({"cross<Q1.30>(Vec3<Q1.30>, Vec3<Q1.30>)", "32-bit random + edge pairs", [] {
                  ErrStats s;
                  const auto vs = vecs32(300000);
                  for (std::size_t i = 0; i + 1 < vs.size(); ++i) {

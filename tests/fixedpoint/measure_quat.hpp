@@ -195,14 +195,12 @@ inline std::vector<Case> quat_cases() {
   c.push_back({"rotate(rotation_between(a, b), a) vs b",
                "angle π - 2^-k (k = 26..34) and exactly opposite, 10^4 each",
                [] { return measure_antipodal_sweep(detail::kAntipodalLog2, 10000); }});
-  c.push_back({"norm(rotate(q, L)) - norm(L)", "10^5 random q, L",
-               [] {
+  c.push_back({"norm(rotate(q, L)) - norm(L)", "10^5 random q, L", [] {
                  ErrStats len, ang;
                  measure_preservation(random_pairs(100000), len, ang);
                  return len;
                }});
-  c.push_back({"angle(qL, qN) - angle(L, N) (2^-30 rad)", "10^5 random q, L, N",
-               [] {
+  c.push_back({"angle(qL, qN) - angle(L, N) (2^-30 rad)", "10^5 random q, L, N", [] {
                  ErrStats len, ang;
                  measure_preservation(random_pairs(100000), len, ang);
                  return ang;

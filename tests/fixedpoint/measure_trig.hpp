@@ -79,8 +79,7 @@ inline std::vector<Case> trig_cases() {
   std::vector<Case> c;
   c.push_back({"sin_cos(angle_t) -> Q1.30", "all 2^16 Q2.13 angles",
                [] { return measure_sin_cos(angles16_as_angle_t()); }});
-  c.push_back({"sin_cos(angle_t) -> Q1.30", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"sin_cos(angle_t) -> Q1.30", "32-bit edges + 10^6 random", [] {
                  auto in = edge32();
                  auto r = random32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
@@ -90,28 +89,25 @@ inline std::vector<Case> trig_cases() {
                [] { return measure_atan2<q7_8>(exhaustive16(), edge32(-32768, 32767), false); }});
   c.push_back({"atan2(Q15.16, Q15.16) -> angle_t", "32-bit edge x edge pairs",
                [] { return measure_atan2<q15_16>(edge32(), edge32(), false); }});
-  c.push_back({"atan2(Q15.16, Q15.16) -> angle_t", "10^6 random pairs",
-               [] {
+  c.push_back({"atan2(Q15.16, Q15.16) -> angle_t", "10^6 random pairs", [] {
                  return measure_atan2<q15_16>(random32(1000000),
                                               random32(1000000, INT32_MIN, INT32_MAX, 7u), true);
                }});
-  c.push_back({"to_polar(Q7.8, Q7.8).magnitude", "y: all 2^16 x 16-bit edge x",
-               [] { return measure_magnitude<q7_8>(exhaustive16(), edge32(-32768, 32767), false); }});
-  c.push_back({"to_polar(Q15.16, Q15.16).magnitude", "32-bit edge x edge + 10^6 random",
-               [] {
+  c.push_back({"to_polar(Q7.8, Q7.8).magnitude", "y: all 2^16 x 16-bit edge x", [] {
+                 return measure_magnitude<q7_8>(exhaustive16(), edge32(-32768, 32767), false);
+               }});
+  c.push_back({"to_polar(Q15.16, Q15.16).magnitude", "32-bit edge x edge + 10^6 random", [] {
                  ErrStats s = measure_magnitude<q15_16>(edge32(), edge32(), false);
                  s.merge(measure_magnitude<q15_16>(
                      random32(1000000), random32(1000000, INT32_MIN, INT32_MAX, 7u), true));
                  return s;
                }});
-  c.push_back({"acos_unit(Q1.30) -> angle_t", "all 2^16 Q1.14 cosines",
-               [] {
+  c.push_back({"acos_unit(Q1.30) -> angle_t", "all 2^16 Q1.14 cosines", [] {
                  std::vector<std::int64_t> in;
                  for (auto r : exhaustive16()) in.push_back(r << 16);
                  return measure_acos(in);
                }});
-  c.push_back({"acos_unit(Q1.30) -> angle_t", "32-bit edges + 10^6 random in [-1, 1]",
-               [] {
+  c.push_back({"acos_unit(Q1.30) -> angle_t", "32-bit edges + 10^6 random in [-1, 1]", [] {
                  auto in = edge32();
                  auto r = random32(1000000, -(1 << 30), 1 << 30);
                  in.insert(in.end(), r.begin(), r.end());
@@ -125,21 +121,20 @@ inline std::vector<Case> trig_fast_cases() {
   std::vector<Case> c;
   c.push_back({"sin_cos_fast(angle_t) -> Q1.30", "all 2^16 Q2.13 angles",
                [] { return measure_sin_cos(angles16_as_angle_t(), sin_cos_fast); }});
-  c.push_back({"sin_cos_fast(angle_t) -> Q1.30", "32-bit edges + 10^6 random",
-               [] {
+  c.push_back({"sin_cos_fast(angle_t) -> Q1.30", "32-bit edges + 10^6 random", [] {
                  auto in = edge32();
                  auto r = random32(1000000);
                  in.insert(in.end(), r.begin(), r.end());
                  return measure_sin_cos(in, sin_cos_fast);
                }});
-  c.push_back({"atan2_fast(Q7.8, Q7.8) -> angle_t", "y: all 2^16 x 16-bit edge x",
-               [] { return measure_atan2<q7_8>(exhaustive16(), edge32(-32768, 32767), false, true); }});
+  c.push_back({"atan2_fast(Q7.8, Q7.8) -> angle_t", "y: all 2^16 x 16-bit edge x", [] {
+                 return measure_atan2<q7_8>(exhaustive16(), edge32(-32768, 32767), false, true);
+               }});
   c.push_back({"atan2_fast(Q15.16, Q15.16) -> angle_t", "32-bit edge x edge pairs",
                [] { return measure_atan2<q15_16>(edge32(), edge32(), false, true); }});
-  c.push_back({"atan2_fast(Q15.16, Q15.16) -> angle_t", "10^6 random pairs",
-               [] {
-                 return measure_atan2<q15_16>(random32(1000000),
-                                              random32(1000000, INT32_MIN, INT32_MAX, 7u), true, true);
+  c.push_back({"atan2_fast(Q15.16, Q15.16) -> angle_t", "10^6 random pairs", [] {
+                 return measure_atan2<q15_16>(
+                     random32(1000000), random32(1000000, INT32_MIN, INT32_MAX, 7u), true, true);
                }});
   return c;
 }

@@ -18,8 +18,8 @@ static_assert(normalize<q1_30>(qq30{q1_30::zero(), q1_30::zero(), q1_30::zero(),
               identity<q1_30>());
 
 int use_quat(qv30 a, qv30 b, Vec3<q15_16> p, Vec3<q1_14> s) {
-  const qq30 q = normalize<q1_30>(multiply<q1_30>(rotation_between<q1_30>(a, b), conjugate(
-                                                      rotation_between<q1_30>(b, a))));
+  const qq30 q = normalize<q1_30>(
+      multiply<q1_30>(rotation_between<q1_30>(a, b), conjugate(rotation_between<q1_30>(b, a))));
   const Quat<q1_14> q14 = rotation_between<q1_14>(s, s);
   return rotate<q15_16>(q, p).x.raw() + rotate<q1_30>(q, a).y.raw() + rotate<q1_14>(q14, s).z.raw();
 }

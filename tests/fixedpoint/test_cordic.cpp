@@ -40,8 +40,9 @@ TEST(Cordic, SinCosSpecialAngles) {
   EXPECT_LE(std::abs(sc0.sin.raw()), 1);
   EXPECT_GE(sc0.cos.raw(), (1 << 30) - 1);
   // Range ends: angle_t min() = -4 and max() ~ 4 (beyond ±π) reduce correctly.
-  for (auto a : {fx::angle_t::min(), fx::angle_t::max(), fx::angle_t::from_raw(tp::tables::pi_q2_29),
-                 fx::angle_t::from_raw(-tp::tables::pi_q2_29)}) {
+  for (auto a :
+       {fx::angle_t::min(), fx::angle_t::max(), fx::angle_t::from_raw(tp::tables::pi_q2_29),
+        fx::angle_t::from_raw(-tp::tables::pi_q2_29)}) {
     const auto sc = fx::sin_cos(a);
     EXPECT_LE(std::fabs(err_lsb(sc.sin, std::sin(to_ld(a)))), 0.503L) << a.raw();
     EXPECT_LE(std::fabs(err_lsb(sc.cos, std::cos(to_ld(a)))), 0.503L) << a.raw();
@@ -93,8 +94,9 @@ TEST(CordicFast, Atan2AndSinCosMatchTheFullCordic) {
       EXPECT_EQ(a.raw(), 0);
       continue;
     }
-    worst_atan = std::max(worst_atan, std::fabs(err_lsb(a, std::atan2(static_cast<long double>(y),
-                                                                      static_cast<long double>(x)))));
+    worst_atan = std::max(
+        worst_atan, std::fabs(err_lsb(
+                        a, std::atan2(static_cast<long double>(y), static_cast<long double>(x)))));
     differ += a.raw() != fx::atan2(Y, X).raw();
     ++total;
     const fx::angle_t t = fx::angle_t::from_raw(next());
@@ -102,13 +104,16 @@ TEST(CordicFast, Atan2AndSinCosMatchTheFullCordic) {
     worst_sin = std::max(worst_sin, std::fabs(err_lsb(sc.sin, std::sin(to_ld(t)))));
     worst_cos = std::max(worst_cos, std::fabs(err_lsb(sc.cos, std::cos(to_ld(t)))));
   }
-  std::printf("atan2_fast max %.6Lf LSB (%d of %d differ from atan2); sin_cos_fast max sin %.6Lf, cos %.6Lf LSB\n",
-              worst_atan, differ, total, worst_sin, worst_cos);
+  std::printf(
+      "atan2_fast max %.6Lf LSB (%d of %d differ from atan2); sin_cos_fast max sin %.6Lf, cos "
+      "%.6Lf LSB\n",
+      worst_atan, differ, total, worst_sin, worst_cos);
   EXPECT_LE(worst_atan, 0.506L);
   EXPECT_LE(worst_sin, 0.506L);
   EXPECT_LE(worst_cos, 0.506L);
   EXPECT_EQ(fx::atan2_fast(fx::q1_30::zero(), fx::q1_30::one()).raw(), 0);
-  EXPECT_EQ(fx::atan2_fast(fx::q1_30::zero(), -fx::q1_30::one()), fx::angle_t::from_raw(tp::tables::pi_q2_29));
+  EXPECT_EQ(fx::atan2_fast(fx::q1_30::zero(), -fx::q1_30::one()),
+            fx::angle_t::from_raw(tp::tables::pi_q2_29));
 }
 
 // sqrt's e = 0 path (isqrt_plain) gives exactly what the general digit-by-digit root gives.
@@ -117,7 +122,8 @@ TEST(SqrtPlain, IdenticalToTheGeneralRoot) {
   for (int i = 0; i < 300000; ++i) {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
     const std::uint64_t u = i < 1000 ? static_cast<std::uint64_t>(i) : state >> (i % 40);
-    for (std::uint64_t limit : {std::uint64_t{1} << 31, std::uint64_t{1} << 20, ~std::uint64_t{0} >> 5}) {
+    for (std::uint64_t limit :
+         {std::uint64_t{1} << 31, std::uint64_t{1} << 20, ~std::uint64_t{0} >> 5}) {
       const auto a = fx::detail::isqrt_plain(u, limit);
       const auto b = fx::detail::isqrt_shifted(u, 0, limit);
       ASSERT_EQ(a.over, b.over) << u;

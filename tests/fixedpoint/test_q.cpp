@@ -20,7 +20,7 @@ TEST(Q, ConvertRoundsTiesAwayFromZero) {
   EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-8)).raw(), -1);
   EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(7)).raw(), 0);
   EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-7)).raw(), 0);
-  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(24)).raw(), 2);   // 1.5 LSB -> 2
+  EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(24)).raw(), 2);  // 1.5 LSB -> 2
   EXPECT_EQ(fx::convert<q3_4>(q7_8::from_raw(-24)).raw(), -2);
 }
 
@@ -84,14 +84,14 @@ TEST(Q, MulSatRoundsTiesAwayFromZero) {
   const auto lsb = q7_8::from_raw(1), half = q7_8::from_raw(128);
   EXPECT_EQ(fx::mul_sat<q7_8>(lsb, half).raw(), 1);
   EXPECT_EQ(fx::mul_sat<q7_8>(-lsb, half).raw(), -1);
-  EXPECT_EQ(fx::mul_sat<q7_8>(q7_8::from_raw(3), half).raw(), 2);    // 1.5 -> 2
+  EXPECT_EQ(fx::mul_sat<q7_8>(q7_8::from_raw(3), half).raw(), 2);  // 1.5 -> 2
   EXPECT_EQ(fx::mul_sat<q7_8>(q7_8::from_raw(-3), half).raw(), -2);
 }
 
 TEST(Q, FromRatioAndConstants) {
   EXPECT_EQ(fx::q1_30::from_ratio(1, 3).raw(), 357913941);
   EXPECT_EQ(fx::q1_30::from_ratio(-1, 3).raw(), -357913941);
-  EXPECT_EQ(q7_8::from_ratio(1, 512).raw(), 1);   // tie -> away
+  EXPECT_EQ(q7_8::from_ratio(1, 512).raw(), 1);  // tie -> away
   EXPECT_EQ(q7_8::from_ratio(-1, 512).raw(), -1);
   EXPECT_EQ(fx::q1_30::from_int(2), fx::q1_30::max());  // 2 is outside [-2, 2)
   EXPECT_EQ(fx::q1_30::from_int(-2).raw(), INT32_MIN);

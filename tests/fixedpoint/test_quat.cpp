@@ -74,7 +74,8 @@ TEST(Quat, QuarterTurnBetweenAxes) {
   // x -> y: 90 degrees about z, (cos 45, 0, 0, sin 45); 2^30 / sqrt(2) = 759250124.99 -> ...125.
   const quat30 q = fx::rotation_between<q1_30>(kAxes[0], kAxes[1]);
   EXPECT_EQ(q, (quat30{r30(759250125), kZero, kZero, r30(759250125)}));
-  EXPECT_EQ(fx::rotate<q1_30>(q, kAxes[0]).y.raw(), 1 << 30);  // 2 * 759250125^2 / 2^30 rounds to 2^30
+  EXPECT_EQ(fx::rotate<q1_30>(q, kAxes[0]).y.raw(),
+            1 << 30);  // 2 * 759250125^2 / 2^30 rounds to 2^30
   // Components +-1 exactly, every ordered pair of signed axes (not opposite): rotate maps
   // from onto to within the end-to-end bound.
   for (int i = 0; i < 3; ++i)
@@ -99,11 +100,11 @@ TEST(Quat, AntipodalAxesUseTheDocumentedPerpendicular) {
     quat30 expected;
   };
   const Case cases[] = {
-      {kAxes[0], {kZero, kZero, kZero, kOne}},       // e = y: x cross y = z
+      {kAxes[0], {kZero, kZero, kZero, kOne}},  // e = y: x cross y = z
       {fx::neg_sat(kAxes[0]), {kZero, kZero, kZero, m}},
-      {kAxes[1], {kZero, kZero, kZero, m}},          // e = x: y cross x = -z
+      {kAxes[1], {kZero, kZero, kZero, m}},  // e = x: y cross x = -z
       {fx::neg_sat(kAxes[1]), {kZero, kZero, kZero, kOne}},
-      {kAxes[2], {kZero, kZero, kOne, kZero}},       // e = x: z cross x = y
+      {kAxes[2], {kZero, kZero, kOne, kZero}},  // e = x: z cross x = y
       {fx::neg_sat(kAxes[2]), {kZero, kZero, m, kZero}},
   };
   for (const auto& c : cases) {
@@ -133,7 +134,7 @@ TEST(Quat, AntipodalRandomDirections) {
 
 TEST(Quat, ConjugateMultiplyNormalize) {
   const quat30 q = fx::rotation_between<q1_30>(fx::testing::round30({0.6L, -0.8L, 0.0L}),
-                                                fx::testing::round30({0.0L, 0.28L, 0.96L}));
+                                               fx::testing::round30({0.0L, 0.28L, 0.96L}));
   // q q* = |q|^2 (1, 0, 0, 0): |q|^2 is 1 within q's rounding (measured: 0 LSB; bound 2).
   const quat30 p = fx::multiply<q1_30>(q, fx::conjugate(q));
   EXPECT_LE(std::abs(p.w.raw() - (1 << 30)), 2);

@@ -43,7 +43,8 @@ TEST(Vec3, NormalizeExactCases) {
   EXPECT_EQ(fx::normalize<fx::q1_30>(v30{fx::q1_30::min(), r30(0), r30(0)}).x, -fx::q1_30::one());
   EXPECT_EQ(fx::normalize<fx::q1_30>(v30{r30(0), r30(1), r30(0)}).y, fx::q1_30::one());
   // Largest input: all components min() (|v|^2 = 3 * 2^62 uses the full u64 range).
-  const auto m = fx::normalize<fx::q1_30>(v30{fx::q1_30::min(), fx::q1_30::min(), fx::q1_30::min()});
+  const auto m =
+      fx::normalize<fx::q1_30>(v30{fx::q1_30::min(), fx::q1_30::min(), fx::q1_30::min()});
   EXPECT_EQ(m.x, fx::q1_30::from_raw(-619925131));  // -2^30 / sqrt(3) = -619925130.57
 }
 
@@ -124,8 +125,8 @@ TEST(NormalizeFast, ZeroAndAxes) {
   EXPECT_EQ(fx::normalize_fast(0, 0, 0), (v30{r30(0), r30(0), r30(0)}));
   // Axis vectors of any length come out within 1 LSB of the unit axis (Newton from the seed
   // truncates): measured 1073741823 or 1073741824.
-  for (const std::int64_t len : {std::int64_t{1}, std::int64_t{3}, std::int64_t{5}, std::int64_t{1} << 30,
-                                 std::int64_t{1} << 61}) {
+  for (const std::int64_t len : {std::int64_t{1}, std::int64_t{3}, std::int64_t{5},
+                                 std::int64_t{1} << 30, std::int64_t{1} << 61}) {
     for (int axis = 0; axis < 3; ++axis)
       for (const std::int64_t sign : {std::int64_t{1}, std::int64_t{-1}}) {
         const std::int64_t c[3] = {axis == 0 ? sign * len : 0, axis == 1 ? sign * len : 0,

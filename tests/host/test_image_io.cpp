@@ -9,7 +9,8 @@ using namespace tp::host;
 
 TEST(ImageIo, PngRoundTripIsExact) {
   Image8 im(5, 3);
-  for (std::size_t k = 0; k < im.rgb.size(); ++k) im.rgb[k] = static_cast<std::uint8_t>(k * 17 % 256);
+  for (std::size_t k = 0; k < im.rgb.size(); ++k)
+    im.rgb[k] = static_cast<std::uint8_t>(k * 17 % 256);
   const auto file = std::filesystem::temp_directory_path() / "tp_host_roundtrip.png";
   write_png(file, im);
   const Image8 back = read_png(file);

@@ -16,11 +16,13 @@ namespace {
 ::testing::AssertionResult closed_and_oriented(const Mesh& m) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) ++directed[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
+    for (int k = 0; k < 3; ++k)
+      ++directed[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
   for (const auto& [e, n] : directed) {
     if (n != 1) return ::testing::AssertionFailure() << "edge used " << n << " times one way";
     if (!directed.count({e.second, e.first}))
-      return ::testing::AssertionFailure() << "edge " << e.first << "-" << e.second << " is a border";
+      return ::testing::AssertionFailure()
+             << "edge " << e.first << "-" << e.second << " is a border";
   }
   return ::testing::AssertionSuccess();
 }
@@ -72,7 +74,9 @@ TEST(Generators, BigTriangle) {
   EXPECT_EQ(m.positions[2], glm::dvec3(0, 1, 0));
   EXPECT_NEAR(glm::length(m.normals[1] - glm::normalize(glm::dvec3(0.6, -0.54, 1))), 0, 1e-15);
   const auto& t = m.triangles[0];
-  EXPECT_GT(glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]).z, 0);
+  EXPECT_GT(
+      glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]).z,
+      0);
 }
 
 TEST(Generators, UnknownNamesAndParametersAreRejected) {
@@ -96,7 +100,8 @@ TEST(Teapot, NormalsAreUnitAndFacesAgreeWithThem) {
   for (const auto& n : m.normals) EXPECT_NEAR(glm::length(n), 1, 1e-12);
   int disagree = 0;
   for (const auto& t : m.triangles) {
-    const glm::dvec3 g = glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+    const glm::dvec3 g =
+        glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
     EXPECT_GT(glm::length(g), 0);
     for (auto v : t) disagree += glm::dot(g, m.normals[v]) <= 0;
   }
@@ -169,5 +174,6 @@ TEST(Obj, NormalsFromGeometryWhenAbsent) {
   compute_normals(m);
   // Area-weighted normals of the 1× subdivided octahedron: at the 6 original vertices by
   // symmetry exactly the position.
-  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(glm::length(m.normals[i] - m.positions[i]), 0, 1e-12);
+  for (std::size_t i = 0; i < 6; ++i)
+    EXPECT_NEAR(glm::length(m.normals[i] - m.positions[i]), 0, 1e-12);
 }

@@ -41,7 +41,9 @@ Mesh square(double x0, double y0, double x1, double y1) {
   return m;
 }
 
-std::size_t idx(const FrameSetup& f, int i, int j) { return static_cast<std::size_t>(j * f.width + i); }
+std::size_t idx(const FrameSetup& f, int i, int j) {
+  return static_cast<std::size_t>(j * f.width + i);
+}
 
 }  // namespace
 
@@ -54,9 +56,9 @@ TEST(Reference, FlatQuadFacingADirectionalLightHasTheExactValue) {
   const glm::dvec3 want = 0.7 * f.material.colour + glm::dvec3(0.4);
   const float* c = r.linear.at(32, 32);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], want[k], 1e-6);  // float storage
-  EXPECT_EQ(r.rgb8.at(32, 32)[0], 138);  // round(255·0.54) = round(137.7)
-  EXPECT_EQ(r.rgb8.at(32, 32)[1], 173);  // round(255·0.68) = round(173.4)
-  EXPECT_EQ(r.rgb8.at(32, 32)[2], 255);  // 1.1 clamped
+  EXPECT_EQ(r.rgb8.at(32, 32)[0], 138);                          // round(255·0.54) = round(137.7)
+  EXPECT_EQ(r.rgb8.at(32, 32)[1], 173);                          // round(255·0.68) = round(173.4)
+  EXPECT_EQ(r.rgb8.at(32, 32)[2], 255);                          // 1.1 clamped
   EXPECT_FLOAT_EQ(r.clamped.at(32, 32)[2], 1.0f);
   EXPECT_FLOAT_EQ(r.linear.at(32, 32)[2], 1.1f);
   EXPECT_EQ(r.mask[idx(f, 0, 0)], 0);  // outside the quad (|x| > 1): background
@@ -76,7 +78,8 @@ TEST(Reference, FlatQuadUnderAPointLightMatchesTheClosedForm) {
     const glm::dvec3 p(-1.25 + 2.5 * (i + 0.5) / 64, 1.25 - 2.5 * (j + 0.5) / 64, 0);
     const glm::dvec3 l = glm::normalize(glm::dvec3(0.3, -0.2, 1.5) - p);
     const double nl = l.z, nh = glm::normalize(l + glm::dvec3(0, 0, 1)).z;
-    const glm::dvec3 want = (0.1 + 0.6 * nl) * f.material.colour + glm::dvec3(0.4 * std::pow(nh, 20));
+    const glm::dvec3 want =
+        (0.1 + 0.6 * nl) * f.material.colour + glm::dvec3(0.4 * std::pow(nh, 20));
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.linear.at(i, j)[k], want[k], 1e-6) << i << "," << j;
   }
 }
@@ -210,7 +213,8 @@ TEST(Angular, EqualsPhongWhenNormalsAreEqual) {
   const ReferenceImage a = render_reference(f, {{&q, glm::dmat4(1)}}, Interpolation::Angular);
   const ReferenceImage p = render_reference(f, {{&q, glm::dmat4(1)}}, Interpolation::Phong);
   EXPECT_EQ(a.mask, p.mask);
-  for (std::size_t k = 0; k < a.linear.rgb.size(); ++k) EXPECT_NEAR(a.linear.rgb[k], p.linear.rgb[k], 1e-6);
+  for (std::size_t k = 0; k < a.linear.rgb.size(); ++k)
+    EXPECT_NEAR(a.linear.rgb[k], p.linear.rgb[k], 1e-6);
 }
 
 TEST(Angular, DiffersFromPhongOnACoarseSphereButNotMuch) {

@@ -63,8 +63,7 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"missing_key.json", 1, "", "missing key \"camera\""},
         // A repeated key would silently drop its first value; the line is the repeat's.
         Expected{"duplicate_key.json", 7, "/lights/1/position", "duplicate key \"position\""},
-        Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions",
-                 "out of range"}));
+        Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions", "out of range"}));
 
 TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
   // nlohmann either refuses 1e999 while parsing or yields infinity; both must be an error on
@@ -79,8 +78,8 @@ TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
 TEST(SceneParse, DeepNestingIsRefusedBeforeParsing) {
   // 100,000 nested arrays (200 KB) crashed the JSON library's recursive value tree; refused
   // with the line of the first bracket past the limit. Brackets inside strings do not count.
-  const std::string deep = "{\n\"name\": \"[[[[\",\n\"x\": " + std::string(100000, '[') +
-                           std::string(100000, ']') + "}";
+  const std::string deep =
+      "{\n\"name\": \"[[[[\",\n\"x\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
   try {
     parse_scene(deep, "deep.json", ".");
     FAIL();
@@ -107,8 +106,8 @@ TEST(SceneParse, MissingFileIsAnError) {
 
 TEST(SceneParse, InlineTextErrorsNameTheGivenFileName) {
   try {
-    parse_scene("{\n \"camera\": {\"type\": \"fisheye\"}, \"lights\": [], \"meshes\": []}", "inline",
-                ".");
+    parse_scene("{\n \"camera\": {\"type\": \"fisheye\"}, \"lights\": [], \"meshes\": []}",
+                "inline", ".");
     FAIL();
   } catch (const SceneError& e) {
     EXPECT_EQ(e.file(), "inline");
@@ -151,7 +150,9 @@ TEST(ShippedScenes, AllLoadWithThePapersParameters) {
 }
 
 TEST(ShippedScenes, TriangleCounts) {
-  auto tris = [](const char* f) { return load_scene(kScenes / f).meshes.at(0).mesh.triangles.size(); };
+  auto tris = [](const char* f) {
+    return load_scene(kScenes / f).meshes.at(0).mesh.triangles.size();
+  };
   EXPECT_EQ(tris("sphere-32.json"), 32u);
   EXPECT_EQ(tris("sphere-512.json"), 512u);
   EXPECT_EQ(tris("sphere-40.json"), 40u);
@@ -180,7 +181,8 @@ TEST(Matrices, PerspectiveTeapotLightGoesToEyeSpace) {
   const Scene s = load_scene(kScenes / "teapot.json");
   const auto lights = eye_lights(s);
   const glm::dmat4 v = glm::lookAt(glm::dvec3(0, 1.5, 6), glm::dvec3(0), glm::dvec3(0, 1, 0));
-  const glm::dvec3 want = glm::normalize(glm::dvec3(v * glm::dvec4(glm::normalize(glm::dvec3(1, 1.5, 1)), 0)));
+  const glm::dvec3 want =
+      glm::normalize(glm::dvec3(v * glm::dvec4(glm::normalize(glm::dvec3(1, 1.5, 1)), 0)));
   EXPECT_NEAR(glm::length(lights.at(0).vector - want), 0, 1e-12);
   EXPECT_FALSE(eye_at_infinity(s.camera));
   // The eye-space origin is the camera position.

@@ -56,13 +56,17 @@ double worst_stepping_error(int max_n, int trials, unsigned seed) {
     // A run of n pixels from (u0, v0) to (u1, v1) inside the triangle.
     double u0 = unit(rng), v0 = unit(rng) * (1 - u0), u1 = unit(rng), v1 = unit(rng) * (1 - u1);
     const double du = n > 1 ? (u1 - u0) / (n - 1) : 0, dv = n > 1 ? (v1 - v0) / (n - 1) : 0;
-    const auto q30 = [](double x) { return static_cast<std::int64_t>(std::llround(x * 1073741824.0)); };
+    const auto q30 = [](double x) {
+      return static_cast<std::int64_t>(std::llround(x * 1073741824.0));
+    };
     QuadStep st = seed_quadratic(prepare_steps(q, q30(du), q30(dv)), q30(u0), q30(v0), n);
     for (int x = 0; x < n; ++x) {
       const double u = u0 + x * du, v = v0 + x * dv;
       const double exact = (static_cast<double>(q.c0) + q.cu * u + q.cv * v + q.cuu * u * u +
-                            q.cvv * v * v + q.cuv * u * v) / (1 << kSampleFrac);
-      const double got = static_cast<double>(st.v) / static_cast<double>(std::int64_t{1} << kQuadStateFrac);
+                            q.cvv * v * v + q.cuv * u * v) /
+                           (1 << kSampleFrac);
+      const double got =
+          static_cast<double>(st.v) / static_cast<double>(std::int64_t{1} << kQuadStateFrac);
       worst = std::max(worst, std::fabs(got - exact));
       st.v += st.d1;
       st.d1 += st.d2;
@@ -97,7 +101,9 @@ struct Scenario {
 class Random {
  public:
   explicit Random(std::uint32_t seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   Vec3u unit_near(double cx, double cy, double cz, double spread) {
     double x = cx + uniform(-spread, spread), y = cy + uniform(-spread, spread),
@@ -108,8 +114,12 @@ class Random {
                  q1_30::from_raw(static_cast<std::int32_t>(std::lround(y / l * (1 << 30)))),
                  q1_30::from_raw(static_cast<std::int32_t>(std::lround(z / l * (1 << 30))))};
   }
-  q15_16 q16(double v) { return q15_16::from_raw(static_cast<std::int32_t>(std::lround(v * 65536))); }
-  q1_30 q30(double v) { return q1_30::from_raw(static_cast<std::int32_t>(std::lround(v * (1 << 30)))); }
+  q15_16 q16(double v) {
+    return q15_16::from_raw(static_cast<std::int32_t>(std::lround(v * 65536)));
+  }
+  q1_30 q30(double v) {
+    return q1_30::from_raw(static_cast<std::int32_t>(std::lround(v * (1 << 30))));
+  }
 
   // A triangle of 3–200 pixels across in a 256² viewport, perspective w in [1, 6], eye-space
   // positions on the view rays, vertex normals within a random spread of a random facing
@@ -170,7 +180,8 @@ class BudgetProbe final : public SpanTarget {
     m_.shade_span(s, buf_);
     for (std::int32_t x = s.x0; x < s.x1; ++x) {
       const Rgb8 got = buf_[x - s.x0], want = m_.exact_at(x, s.y);
-      const int d = std::max({std::abs(got.r - want.r), std::abs(got.g - want.g), std::abs(got.b - want.b)});
+      const int d =
+          std::max({std::abs(got.r - want.r), std::abs(got.g - want.g), std::abs(got.b - want.b)});
       worst = std::max(worst, d);
       ++pixels;
     }
@@ -189,7 +200,8 @@ TEST(KbAdaptiveBudget, RandomTrianglesStayWithinOneLevelOfTheExactEvaluation) {
   auto method = std::make_unique<KbAdaptiveMethod>();
   int worst_by_path[5] = {0, 0, 0, 0, 0};
   std::uint64_t triangles_by_path[5] = {0, 0, 0, 0, 0}, pixels = 0;
-  const int kTriangles = std::getenv("KB_TRIANGLES") ? std::atoi(std::getenv("KB_TRIANGLES")) : 10000;
+  const int kTriangles =
+      std::getenv("KB_TRIANGLES") ? std::atoi(std::getenv("KB_TRIANGLES")) : 10000;
   for (int t = 0; t < kTriangles; ++t) {
     Scenario sc = rnd.scenario();
     if (sc.tri.area2 == 0) continue;
@@ -201,9 +213,9 @@ TEST(KbAdaptiveBudget, RandomTrianglesStayWithinOneLevelOfTheExactEvaluation) {
     ++triangles_by_path[path];
     worst_by_path[path] = std::max(worst_by_path[path], probe.worst);
     pixels += probe.pixels;
-    EXPECT_LE(probe.worst, kBudgetLevels) << "triangle " << t << " path " << path << " n "
-                                          << sc.ctx.material.n << " area2 " << sc.tri.area2
-                                          << " eye " << static_cast<int>(sc.ctx.eye);
+    EXPECT_LE(probe.worst, kBudgetLevels)
+        << "triangle " << t << " path " << path << " n " << sc.ctx.material.n << " area2 "
+        << sc.tri.area2 << " eye " << static_cast<int>(sc.ctx.eye);
   }
   const char* names[5] = {"constant", "linear", "quadratic", "subdivided", "exact"};
   std::printf("%d random triangles, %llu pixels; worst |kb-adaptive - exact| by path:\n",

@@ -48,20 +48,22 @@ TEST_P(KbAdaptiveScene, SkippingBudgetAccuracy) {
     EXPECT_EQ(counter(adaptive, c), counter(no_skip, c)) << c;
 
   // The budget, against the exact evaluation of the same triangles.
-  const Comparison budget = compare(exact.image(), exact.covered, adaptive.image(), adaptive.covered);
+  const Comparison budget =
+      compare(exact.image(), exact.covered, adaptive.image(), adaptive.covered);
   EXPECT_LE(budget.max_abs, 1);
 
   const Comparison a = against_phong(device, adaptive);
-  std::printf("%-24s cc %.5f max %3d | vs exact: max %d | constant %llu linear %llu quadratic %llu "
-              "subdivided %llu (cells %llu, exact cells %llu) exact %llu\n",
-              name.c_str(), a.color_correctness, a.max_abs, budget.max_abs,
-              static_cast<unsigned long long>(counter(adaptive, "adaptive_constant")),
-              static_cast<unsigned long long>(counter(adaptive, "adaptive_linear")),
-              static_cast<unsigned long long>(counter(adaptive, "adaptive_quadratic")),
-              static_cast<unsigned long long>(counter(adaptive, "adaptive_subdivided")),
-              static_cast<unsigned long long>(counter(adaptive, "subtriangles")),
-              static_cast<unsigned long long>(counter(adaptive, "subtriangles_exact")),
-              static_cast<unsigned long long>(counter(adaptive, "adaptive_exact")));
+  std::printf(
+      "%-24s cc %.5f max %3d | vs exact: max %d | constant %llu linear %llu quadratic %llu "
+      "subdivided %llu (cells %llu, exact cells %llu) exact %llu\n",
+      name.c_str(), a.color_correctness, a.max_abs, budget.max_abs,
+      static_cast<unsigned long long>(counter(adaptive, "adaptive_constant")),
+      static_cast<unsigned long long>(counter(adaptive, "adaptive_linear")),
+      static_cast<unsigned long long>(counter(adaptive, "adaptive_quadratic")),
+      static_cast<unsigned long long>(counter(adaptive, "adaptive_subdivided")),
+      static_cast<unsigned long long>(counter(adaptive, "subtriangles")),
+      static_cast<unsigned long long>(counter(adaptive, "subtriangles_exact")),
+      static_cast<unsigned long long>(counter(adaptive, "adaptive_exact")));
   if (stress) {
     const Comparison g = against_phong(device, render(device, scene, "gouraud"));
     EXPECT_GE(a.color_correctness, 0.995);

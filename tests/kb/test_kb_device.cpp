@@ -61,10 +61,10 @@ INSTANTIATE_TEST_SUITE_P(PaperScenes, KbSkipping, ::testing::ValuesIn(kbtest::kP
 struct Measured {
   const char* scene;
   const char* method;
-  double phong_cc;   // colour correctness against the Phong reference
-  double phong_mean; // levels
+  double phong_cc;    // colour correctness against the Phong reference
+  double phong_mean;  // levels
   int phong_max;
-  double angular_cc; // against the angular (slerped-normal) reference
+  double angular_cc;  // against the angular (slerped-normal) reference
   double angular_mean;
   int angular_max;
 };
@@ -181,12 +181,12 @@ TEST_P(KbDegenerateLight, RendersAndSkipsExactly) {
 // (`kb_device_test --gtest_filter='*Degenerate*'`): 0.9016 and 0.9879; pinned 0.002 lower.
 INSTANTIATE_TEST_SUITE_P(
     Triangle, KbDegenerateLight,
-    ::testing::Values(
-        Degenerate{"tangent_plane",
-                   glm::dvec3{1, -0.9, 0} +
-                       0.5 * glm::normalize(glm::cross(glm::dvec3{0.6, -0.54, 1}, glm::dvec3{0, 1, 0})),
-                   0.8996},
-        Degenerate{"touching", glm::dvec3{0.1, -0.1, 0.002}, 0.9859}),
+    ::testing::Values(Degenerate{"tangent_plane",
+                                 glm::dvec3{1, -0.9, 0} +
+                                     0.5 * glm::normalize(glm::cross(glm::dvec3{0.6, -0.54, 1},
+                                                                     glm::dvec3{0, 1, 0})),
+                                 0.8996},
+                      Degenerate{"touching", glm::dvec3{0.1, -0.1, 0.002}, 0.9859}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

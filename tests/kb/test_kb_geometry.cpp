@@ -157,9 +157,9 @@ TEST(KbGeometry, SpanLineStepsPhiPerPixel) {
   const kb::Unit a = unit({0.5, 0.2, 0.8}), b = unit({-0.4, 0.1, 0.9});
   const kb::SpanCircle c = kb::span_circle(a, b);
   const double xl = 10.3125, xr = 4106.75;  // 1/16-pixel positions
-  const kb::SpanLine line = kb::span_line(c, kb::xpos_t::from_ratio(165, 16),
-                                          kb::xpos_t::from_ratio(65708, 16),
-                                          kb::xpos_t::from_ratio(21, 2));
+  const kb::SpanLine line =
+      kb::span_line(c, kb::xpos_t::from_ratio(165, 16), kb::xpos_t::from_ratio(65708, 16),
+                    kb::xpos_t::from_ratio(21, 2));
   const double th = to_d(c.theta), pl = to_d(c.phi_left);
   double worst = 0;
   for (int k = 0; k < 4096; ++k) {

@@ -35,7 +35,8 @@ void fill_random(kb::SpanSections& sec, std::mt19937_64& rng, const Case& c) {
   const int ns[] = {1, 5, 20, 50, 125, 500, 2000};
   const double pi = std::numbers::pi;
   std::int64_t ambient[3];
-  for (auto& a : ambient) a = std::llround(u(rng) * 0.1 * 255 / 4096 * std::ldexp(1.0, cosn::kStateFrac));
+  for (auto& a : ambient)
+    a = std::llround(u(rng) * 0.1 * 255 / 4096 * std::ldexp(1.0, cosn::kStateFrac));
   sec.begin(c.length, ambient);
   for (int j = 0; j < c.terms; ++j) {
     const int n = ns[rng() % 7];

@@ -1,4 +1,5 @@
-// Every device method against the double-precision reference on every paper scene (docs/RESULTS.md).
+// Every device method against the double-precision reference on every paper scene
+// (docs/RESULTS.md).
 //
 // The bounds are measured, then pinned with a margin, so that a regression in any method shows.
 // Origin of every number below: the release build of
@@ -102,8 +103,8 @@ TEST(SceneAccuracy, PhongBeatsGouraudAndFlatOnSphere32) {
 // device's Q15.16 vertex transform moves their snapped vertices by one step relative to the
 // double reference, which shifts the interpolated normal noticeably on such a small triangle.
 TEST(SceneAccuracy, PhongMatchesReference) {
-  for (const char* scene : {"sphere-32", "sphere-40", "sphere-512", "dodecahedron-30", "triangle",
-                            "teapot"}) {
+  for (const char* scene :
+       {"sphere-32", "sphere-40", "sphere-512", "dodecahedron-30", "triangle", "teapot"}) {
     SCOPED_TRACE(scene);
     const Rendered r = render(scene, "phong");
     EXPECT_LE(r.phong.mean_abs, 1.0);
@@ -117,8 +118,10 @@ TEST(SceneAccuracy, PhongMatchesReference) {
         if (!r.reference.covered[i] || !r.frame.covered[i]) continue;
         int d = 0;
         for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(ref.at(x, y)[c] - dev.at(x, y)[c]));
-        if (d > 3) ++above3;
-        else max_other = std::max(max_other, d);
+        if (d > 3)
+          ++above3;
+        else
+          max_other = std::max(max_other, d);
       }
     EXPECT_LE(max_other, 3);
     // Measured: 4 of the teapot's 81,018 pixels (all at the spout tip), 0 elsewhere.

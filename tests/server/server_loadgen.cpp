@@ -3,8 +3,8 @@
 // tinyphong-server, for T seconds; reports frames/s and bytes per frame per client, the server's
 // RSS (given its pid), and what zlib would save on the frames (lossless compression check).
 //   server_loadgen --port P [--clients N] [--stalled K] [--seconds T] [--pid PID]
-#include <utility>  // before Boost 1.74 asio (awaitable.hpp uses std::exchange)
 #include <zlib.h>
+#include <utility>  // before Boost 1.74 asio (awaitable.hpp uses std::exchange)
 
 #include <atomic>
 #include <cstdio>
@@ -36,14 +36,21 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
     const std::string v = argv[i + 1];
-    if (k == "--port") port = static_cast<unsigned short>(std::stoi(v));
-    else if (k == "--clients") clients = std::stoi(v);
-    else if (k == "--stalled") stalled = std::stoi(v);
-    else if (k == "--seconds") seconds = std::stod(v);
-    else if (k == "--pid") pid = std::stoi(v);
+    if (k == "--port")
+      port = static_cast<unsigned short>(std::stoi(v));
+    else if (k == "--clients")
+      clients = std::stoi(v);
+    else if (k == "--stalled")
+      stalled = std::stoi(v);
+    else if (k == "--seconds")
+      seconds = std::stod(v);
+    else if (k == "--pid")
+      pid = std::stoi(v);
   }
   if (!port) {
-    std::fprintf(stderr, "usage: server_loadgen --port P [--clients N] [--stalled K] [--seconds T] [--pid PID]\n");
+    std::fprintf(
+        stderr,
+        "usage: server_loadgen --port P [--clients N] [--stalled K] [--seconds T] [--pid PID]\n");
     return 2;
   }
   const long rss0 = pid ? rss_kib(pid) : -1;
@@ -53,13 +60,15 @@ int main(int argc, char** argv) {
   std::atomic<long> rss_max{0};
   std::mutex sample_m;
   std::string sample, stats;
-  const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(seconds));
   std::vector<std::thread> threads;
   for (int i = 0; i < clients; ++i) {
     threads.emplace_back([&, i] {
       WsClient c(port);
       while (Clock::now() < end) {
-        Message m = c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+        Message m =
+            c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
         if (!m.ok) break;
         if (!m.binary) {
           if (i == 0 && m.data.find("\"stats\"") != std::string::npos) {
@@ -84,8 +93,9 @@ int main(int argc, char** argv) {
   }
   for (auto& t : threads) t.join();
   const double per_client_fps = static_cast<double>(frames) / clients / seconds;
-  std::printf("clients %d (+%d stalled), %.1f s: %.2f frames/s per client, %.0f bytes per frame\n", clients,
-              stalled, seconds, per_client_fps, frames ? static_cast<double>(bytes) / static_cast<double>(frames) : 0.0);
+  std::printf("clients %d (+%d stalled), %.1f s: %.2f frames/s per client, %.0f bytes per frame\n",
+              clients, stalled, seconds, per_client_fps,
+              frames ? static_cast<double>(bytes) / static_cast<double>(frames) : 0.0);
   if (!stats.empty()) {
     auto j = nlohmann::json::parse(stats);
     std::printf("server stats: render loop %.2f fps, device render %.2f ms/frame, %d clients\n",
@@ -93,7 +103,8 @@ int main(int argc, char** argv) {
   }
   if (pid) std::printf("server RSS: %ld KiB before, %ld KiB max during\n", rss0, rss_max.load());
   tp::server::EncodedFrame header;
-  if (tp::server::decode_header({reinterpret_cast<const std::uint8_t*>(sample.data()), sample.size()}, header)) {
+  if (tp::server::decode_header(
+          {reinterpret_cast<const std::uint8_t*>(sample.data()), sample.size()}, header)) {
     const auto* px = reinterpret_cast<const Bytef*>(sample.data() + header.header_bytes);
     const uLong n = static_cast<uLong>(sample.size() - header.header_bytes);
     for (int level : {1, 6}) {
@@ -103,7 +114,8 @@ int main(int argc, char** argv) {
       compress2(out.data(), &outn, px, n, level);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       std::printf("zlib level %d on one frame: %lu -> %lu bytes (%.1f%%) in %.2f ms\n", level, n,
-                  static_cast<unsigned long>(outn), 100.0 * static_cast<double>(outn) / static_cast<double>(n), ms);
+                  static_cast<unsigned long>(outn),
+                  100.0 * static_cast<double>(outn) / static_cast<double>(n), ms);
     }
   }
   return 0;

@@ -85,7 +85,8 @@ class ServerProcess {
     int status = 0;
     while (std::chrono::steady_clock::now() - t0 < limit) {
       if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
+        took = std::chrono::duration_cast<std::chrono::milliseconds>(
+            std::chrono::steady_clock::now() - t0);
         pid_ = -1;
         return status;
       }
@@ -152,10 +153,12 @@ class WsClient {
   }
   void send_json(const nlohmann::json& j) { send(j.dump()); }
   // Reads until a text message of the given type (acking frames on the way, if asked).
-  nlohmann::json read_json(const std::string& type, std::chrono::milliseconds timeout = 10s, bool acks = true) {
+  nlohmann::json read_json(const std::string& type, std::chrono::milliseconds timeout = 10s,
+                           bool acks = true) {
     const auto end = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < end) {
-      Message m = read(std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()));
+      Message m = read(std::chrono::duration_cast<std::chrono::milliseconds>(
+          end - std::chrono::steady_clock::now()));
       if (!m.ok) break;
       if (m.binary) {
         if (acks) ack(m.data);
@@ -168,7 +171,8 @@ class WsClient {
   }
   void ack(const std::string& frame) {
     std::uint32_t id = 0;
-    for (int i = 3; i >= 0; --i) id = (id << 8) | static_cast<std::uint8_t>(frame[8 + static_cast<std::size_t>(i)]);
+    for (int i = 3; i >= 0; --i)
+      id = (id << 8) | static_cast<std::uint8_t>(frame[8 + static_cast<std::size_t>(i)]);
     const bool ref = frame[6] == 1;
     send_json({{"type", "ack"}, {"id", id}, {"kind", ref ? "reference" : "device"}});
   }

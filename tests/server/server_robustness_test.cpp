@@ -15,28 +15,33 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-std::vector<std::string> pattern_args(std::vector<std::string> extra = {}, int w = 160, int h = 120) {
-  std::vector<std::string> a = {"--source", "pattern", "--width", std::to_string(w), "--height", std::to_string(h),
-                                "--max-fps", "60"};
+std::vector<std::string> pattern_args(std::vector<std::string> extra = {}, int w = 160,
+                                      int h = 120) {
+  std::vector<std::string> a = {"--source", "pattern",         "--width",   std::to_string(w),
+                                "--height", std::to_string(h), "--max-fps", "60"};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
 
 // Reads until n device frames arrived (acking each); returns how many did within the timeout.
-int read_frames(WsClient& c, int n, std::chrono::milliseconds timeout, std::vector<double>* gaps_ms = nullptr) {
+int read_frames(WsClient& c, int n, std::chrono::milliseconds timeout,
+                std::vector<double>* gaps_ms = nullptr) {
   const auto end = Clock::now() + timeout;
   int got = 0;
   auto last = Clock::now();
   while (got < n && Clock::now() < end) {
-    Message m = c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    Message m =
+        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
     if (!m.ok) break;
     if (!m.binary) continue;
     tp::server::EncodedFrame h;
-    EXPECT_TRUE(tp::server::decode_header({reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    EXPECT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
     c.ack(m.data);
     if (h.kind != tp::server::FrameKind::device) continue;
     const auto now = Clock::now();
-    if (gaps_ms && got > 0) gaps_ms->push_back(std::chrono::duration<double, std::milli>(now - last).count());
+    if (gaps_ms && got > 0)
+      gaps_ms->push_back(std::chrono::duration<double, std::milli>(now - last).count());
     last = now;
     ++got;
   }
@@ -84,7 +89,8 @@ TEST(ServerRobustness, StalledClientIsCutOffWithoutHurtingOthers) {
   EXPECT_LT(worst, 750.0);
   // Each frame is shared by all sessions; per-client state is two frame references and a short
   // text queue. Measured growth with the stalled client: under 2 MiB. Bound: 16 MiB.
-  EXPECT_LT(rss_during - rss_before, 16 * 1024) << "RSS " << rss_before << " -> " << rss_during << " KiB";
+  EXPECT_LT(rss_during - rss_before, 16 * 1024)
+      << "RSS " << rss_before << " -> " << rss_during << " KiB";
   // The stalled client is closed by the deadline: the server reports one client again.
   bool one_client = false;
   const auto end = Clock::now() + 10s;
@@ -97,7 +103,8 @@ TEST(ServerRobustness, StalledClientIsCutOffWithoutHurtingOthers) {
   bool ended = false;
   for (int i = 0; i < 100 && !ended; ++i) ended = !stalled.read(5s).ok;
   EXPECT_TRUE(ended);
-  std::printf("[ measured ] worst frame gap %.1f ms, RSS %ld -> %ld KiB\n", worst, rss_before, rss_during);
+  std::printf("[ measured ] worst frame gap %.1f ms, RSS %ld -> %ld KiB\n", worst, rss_before,
+              rss_during);
 }
 
 TEST(ServerRobustness, ClientThatNeverAcksGetsAtMostTwoFramesInFlight) {
@@ -106,7 +113,8 @@ TEST(ServerRobustness, ClientThatNeverAcksGetsAtMostTwoFramesInFlight) {
   int frames = 0;
   const auto end = Clock::now() + 1500ms;  // within the deadline: not closed yet
   while (Clock::now() < end) {
-    Message m = c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    Message m =
+        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
     if (!m.ok) break;
     frames += m.binary ? 1 : 0;
   }
@@ -181,7 +189,9 @@ TEST(ServerRobustness, ForeignOriginAndHostAreRefused) {
   EXPECT_EQ(status_of("http://localhost:" + std::to_string(srv.port()), ""), 101);
   EXPECT_EQ(status_of("http://evil.example", ""), 403);
   EXPECT_EQ(status_of("http://127.0.0.1:1", ""), 403);
-  EXPECT_EQ(status_of("http://evil.example:" + std::to_string(srv.port()), "evil.example:" + std::to_string(srv.port())), 403);
+  EXPECT_EQ(status_of("http://evil.example:" + std::to_string(srv.port()),
+                      "evil.example:" + std::to_string(srv.port())),
+            403);
   // The status itself, over raw HTTP.
   EXPECT_EQ(http_get(srv.port(), "/", "rebind.example:" + std::to_string(srv.port())), 403);
 }
@@ -190,9 +200,10 @@ TEST(ServerRobustness, TraversalAttemptsGet404) {
   ServerProcess srv(pattern_args());
   EXPECT_EQ(http_get(srv.port(), "/"), 200);
   EXPECT_EQ(http_get(srv.port(), "/app.js"), 200);
-  for (const char* t : {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/%2E%2E%2F%2E%2E%2Fetc%2Fpasswd",
-                        "/..\\..\\etc\\passwd", "/web/../../CMakeLists.txt", "/./index.html", "/server/main.cpp",
-                        "/index.html%00.js"})
+  for (const char* t :
+       {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/%2E%2E%2F%2E%2E%2Fetc%2Fpasswd",
+        "/..\\..\\etc\\passwd", "/web/../../CMakeLists.txt", "/./index.html", "/server/main.cpp",
+        "/index.html%00.js"})
     EXPECT_EQ(http_get(srv.port(), t), 404) << t;
 }
 
@@ -242,7 +253,8 @@ TEST(ServerRobustness, IdenticalFramesAreNotResent) {
   int late = 0;
   const auto end = Clock::now() + 1500ms;
   while (Clock::now() < end) {
-    Message m = c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    Message m =
+        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
     if (!m.ok) break;
     if (m.binary) {
       c.ack(m.data);
@@ -268,14 +280,18 @@ TEST(ServerRobustness, ReferenceFramesArePairedWithDeviceFrames) {
     if (!m.ok) break;
     if (!m.binary) continue;
     tp::server::EncodedFrame h;
-    ASSERT_TRUE(tp::server::decode_header({reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    ASSERT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
     c.ack(m.data);
-    if (h.kind == tp::server::FrameKind::device) dev_id = h.id;
-    else paired = h.id == dev_id && dev_id != 0;
+    if (h.kind == tp::server::FrameKind::device)
+      dev_id = h.id;
+    else
+      paired = h.id == dev_id && dev_id != 0;
   }
   EXPECT_TRUE(paired);
   json s;
-  for (int i = 0; i < 20 && !(s.is_object() && s.contains("error")); ++i) s = c.read_json("stats", 2s);
+  for (int i = 0; i < 20 && !(s.is_object() && s.contains("error")); ++i)
+    s = c.read_json("stats", 2s);
   ASSERT_TRUE(s.is_object() && s.contains("error"));
   // The pattern's "reference" is the same image offset by 2 levels (clamped at 255).
   EXPECT_GT(s["error"]["mean_levels"].get<double>(), 1.0);

@@ -99,7 +99,8 @@ TEST(Control, RejectsEachMalformedMessageByName) {
 }
 
 TEST(Control, TypeNamesRoundTrip) {
-  for (int i = static_cast<int>(ControlType::set_method); i <= static_cast<int>(ControlType::get_state); ++i) {
+  for (int i = static_cast<int>(ControlType::set_method);
+       i <= static_cast<int>(ControlType::get_state); ++i) {
     const auto t = static_cast<ControlType>(i);
     EXPECT_EQ(string_to_control_type(to_string(t)), t) << to_string(t);
   }
@@ -122,14 +123,19 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   };
   EXPECT_EQ(run("{\"type\":\"set_method\",\"method\":\"rings\"}"), "");
   EXPECT_EQ(src.settings().method, "rings");
-  EXPECT_NE(run("{\"type\":\"set_method\",\"method\":\"nope\"}").find("unknown method"), std::string::npos);
+  EXPECT_NE(run("{\"type\":\"set_method\",\"method\":\"nope\"}").find("unknown method"),
+            std::string::npos);
   EXPECT_EQ(src.settings().method, "rings");
-  EXPECT_EQ(run("{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[1,2,3],\"color\":[0.5,0.5,0.5]}"), "");
+  EXPECT_EQ(
+      run("{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[1,2,3],\"color\":[0.5,0.5,0.5]}"),
+      "");
   ASSERT_EQ(src.settings().lights.size(), 2u);
   EXPECT_TRUE(src.settings().lights[1].point);
   EXPECT_EQ(run("{\"type\":\"set_light\",\"index\":1,\"vector\":[0,0,5]}"), "");
   EXPECT_EQ(src.settings().lights[1].vector[2], 5.0);
-  EXPECT_NE(run("{\"type\":\"set_light\",\"index\":5,\"vector\":[0,0,5]}").find("no light with index 5"), std::string::npos);
+  EXPECT_NE(
+      run("{\"type\":\"set_light\",\"index\":5,\"vector\":[0,0,5]}").find("no light with index 5"),
+      std::string::npos);
   EXPECT_EQ(run("{\"type\":\"remove_light\",\"index\":0}"), "");
   EXPECT_NE(run("{\"type\":\"remove_light\",\"index\":0}").find("last light"), std::string::npos);
   EXPECT_EQ(src.settings().lights.size(), 1u);
@@ -139,7 +145,8 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_TRUE(flags.paused);
   EXPECT_EQ(run("{\"type\":\"step\"}"), "");
   EXPECT_TRUE(step);
-  EXPECT_NE(run("{\"type\":\"set_scene\",\"name\":\"nope\"}").find("unknown scene"), std::string::npos);
+  EXPECT_NE(run("{\"type\":\"set_scene\",\"name\":\"nope\"}").find("unknown scene"),
+            std::string::npos);
 }
 
 namespace {
@@ -157,9 +164,10 @@ TEST(Http, ServesOnlyTheEmbeddedAllowList) {
   EXPECT_NE(res.body().find("<canvas"), std::string::npos);
   EXPECT_EQ(route(get("/app.js"), policy()).result(), http::status::ok);
   EXPECT_EQ(route(get("/style.css?v=1"), policy()).result(), http::status::ok);
-  for (const char* t : {"/../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc%2fpasswd",
-                        "/..\\..\\etc\\passwd", "/web/../index.html", "//etc/passwd", "/index.html/..",
-                        "/%2E%2E/index.html", "/CMakeLists.txt", "/server/web/index.html", "index.html"})
+  for (const char* t :
+       {"/../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc%2fpasswd",
+        "/..\\..\\etc\\passwd", "/web/../index.html", "//etc/passwd", "/index.html/..",
+        "/%2E%2E/index.html", "/CMakeLists.txt", "/server/web/index.html", "index.html"})
     EXPECT_EQ(route(get(t), policy()).result(), http::status::not_found) << t;
 }
 
