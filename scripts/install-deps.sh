@@ -18,6 +18,8 @@ packages=(
   chromium
   # tooling used by the scripts
   python3 curl
+  # formatting check (tests/format)
+  clang-format-14
 )
 
 missing=()

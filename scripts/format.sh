@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Formats the repository's C++ sources with its .clang-format, or checks them.
+#
+#   bash scripts/format.sh                 format every source in place
+#   bash scripts/format.sh --check         list the sources that are not formatted; fail if any
+#   bash scripts/format.sh --check FILE…   the same for the given files
+#
+# The style is clang-format 14's (Debian 12's clang-format package; other versions may format
+# some constructs differently, so the check insists on 14). The CTest format.check runs --check.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cf="${CLANG_FORMAT:-clang-format-14}"
+if ! command -v "$cf" >/dev/null; then
+  echo "format.sh: $cf not found (bash scripts/install-deps.sh installs it)" >&2
+  exit 2
+fi
+
+check=false
+if [[ "${1:-}" == --check ]]; then
+  check=true
+  shift
+fi
+files=("$@")
+if [[ ${#files[@]} -eq 0 ]]; then
+  cd "$root"
+  mapfile -t files < <(find bench firmware fixedpoint host server tables tests -type f \
+                         \( -name '*.cpp' -o -name '*.hpp' \) -not -path '*/node_modules/*' | sort)
+fi
+
+if ! $check; then
+  "$cf" -i --style=file "${files[@]}"
+  echo "format.sh: formatted ${#files[@]} files"
+  exit 0
+fi
+bad=0
+for f in "${files[@]}"; do
+  if ! "$cf" --style=file "$f" | cmp -s - "$f"; then
+    echo "not formatted: $f (bash scripts/format.sh formats it)"
+    bad=$((bad + 1))
+  fi
+done
+if [[ $bad -gt 0 ]]; then
+  echo "format.sh: $bad of ${#files[@]} files not formatted" >&2
+  exit 1
+fi
+echo "format.sh: all ${#files[@]} files formatted"
