@@ -14,6 +14,7 @@
 
 #include <cstdint>
 
+#include "firmware/types.hpp"
 #include "fixedpoint/cordic.hpp"
 #include "fixedpoint/q.hpp"
 #include "tables/cosn_fits.hpp"
@@ -26,6 +27,7 @@ static_assert(angle_t::frac_bits == tables::cosn_fits::kAngleFracBits, "fits are
 
 inline constexpr int kMinN = 1;
 inline constexpr int kMaxN = 10000;
+static_assert(kMaxN == kMaxExponent, "the device accepts every exponent the fits cover");
 
 struct CosnParams {
   angle_t a;  // inner break: 1 − θ²/(ab) on |θ| <= a

@@ -59,7 +59,9 @@ enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 // Device limits. The bound arguments are in raster.cpp (coordinates) and device.cpp (inputs).
 inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
 inline constexpr std::uint32_t kMaxLights = 16;
-inline constexpr std::uint32_t kMaxExponent = 4096;  // Blinn-Phong n
+// Blinn-Phong n: every method evaluates any exponent up to the (a, b) fits' range
+// (cosn::kMaxN, checked in firmware/cosn.hpp); the power by repeated squaring takes 14 steps.
+inline constexpr std::uint32_t kMaxExponent = 10000;
 // Matrix entries and vertex coordinates must satisfy |v| < 2^14 (so that a 4-term dot product of
 // raw Q15.16 values stays below 2^62 in 64-bit arithmetic).
 inline constexpr std::int32_t kMaxCoordRaw = (std::int32_t{1} << 30) - 1;

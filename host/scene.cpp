@@ -9,6 +9,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "firmware/types.hpp"
+
 namespace tp::host {
 
 using nlohmann::json;
@@ -163,7 +165,7 @@ Material read_material(const Reader& r, const json& j, const std::string& p) {
   if (j.contains("ka")) m.ka = r.number(j["ka"], p + "/ka", 0, 1);
   if (j.contains("kd")) m.kd = r.number(j["kd"], p + "/kd", 0, 1);
   if (j.contains("ks")) m.ks = r.number(j["ks"], p + "/ks", 0, 1);
-  if (j.contains("n")) m.n = r.number(j["n"], p + "/n", 1, 10000);
+  if (j.contains("n")) m.n = r.number(j["n"], p + "/n", 1, fw::kMaxExponent);
   if (j.contains("a") != j.contains("b")) r.fail(p, "give both \"a\" and \"b\" or neither");
   if (j.contains("a")) {
     // Kuijk-Blake f(θ): 0 < a < b <= π/2 (f is 1 − θ²/(ab) near 0 and 0 beyond b).

@@ -17,11 +17,11 @@
 namespace tp::server {
 
 inline constexpr std::size_t kControlMessageLimit = 4096;  // bytes; larger → error reply
-// The viewer's own bounds, inside what the device accepts (fw::kMaxDimension, fw::kMaxExponent).
+// The viewer's own sizes, inside what the device accepts (fw::kMaxDimension); the exponent is
+// the device's own bound, the same one the scene reader states (1..fw::kMaxExponent).
 inline constexpr int kMinSize = 16, kMaxSize = 2048;
-inline constexpr double kMaxExponentN = 1000;
+inline constexpr double kMaxExponentN = fw::kMaxExponent;
 static_assert(kMaxSize <= static_cast<int>(fw::kMaxDimension));
-static_assert(kMaxExponentN <= fw::kMaxExponent);
 
 // Flags the render loop owns (not part of the scene).
 struct LoopFlags {

@@ -73,6 +73,7 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_method\"}", "missing 'method'"},
       {"{\"type\":\"set_method\",\"method\":5}", "'method' must be a string"},
       {"{\"type\":\"set_exponent\",\"n\":0}", "'n' out of range"},
+      {"{\"type\":\"set_exponent\",\"n\":10001}", "'n' out of range"},
       {"{\"type\":\"set_exponent\",\"n\":1e400}", "malformed JSON"},
       {"{\"type\":\"set_exponent\",\"n\":20,\"a\":0.1,\"b\":0.3}", "either 'n' or both"},
       {"{\"type\":\"set_exponent\",\"a\":0.1}", "both 'a' and 'b'"},
@@ -139,6 +140,7 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_EQ(run("{\"type\":\"remove_light\",\"index\":0}"), "");
   EXPECT_NE(run("{\"type\":\"remove_light\",\"index\":0}").find("last light"), std::string::npos);
   EXPECT_EQ(src.settings().lights.size(), 1u);
+  EXPECT_EQ(run("{\"type\":\"set_exponent\",\"n\":10000}"), "");  // the device's bound
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":0.3}"), "");
   EXPECT_TRUE(src.settings().use_ab);
   EXPECT_EQ(run("{\"type\":\"pause\",\"on\":true}"), "");
