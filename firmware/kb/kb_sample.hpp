@@ -170,9 +170,14 @@ class PointShader {
       st.p[j] += eye_step_[j];
     }
   }
+  // The n pixels of a span from the stepper's: shade_stepped at each, inlined into the loop so
+  // that the triangle's state stays in registers (the same values as one call per pixel).
+  void shade_run(SpanStepper st, std::int32_t n, Rgb8* out) const {
+    for (std::int32_t x = 0; x < n; ++x, step(st)) out[x] = shade_stepped(st);
+  }
   // The output colour at the stepper's pixel: level_of's Q.14 level, rounded to an integer and
   // clamped to [0, 255] (kb_quadratic.hpp's quad_level), in one step.
-  Rgb8 shade_stepped(const SpanStepper& st) const {
+  [[gnu::always_inline]] Rgb8 shade_stepped(const SpanStepper& st) const {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
     const bool finite = ctx_->eye == EyeMode::kFinite;
     const CutVector n = cut_vector(st.n, normal_cut_);
@@ -342,7 +347,8 @@ class PointShader {
   // images are tested to be identical): below spec_zero_below_ the specular term rounds to
   // exactly 0, so the power is not taken; and a light of intensity exactly 1 in every channel
   // scales by 2^16 / 2^16, which round_shift_right undoes exactly, so the term is added as is.
-  void add_light(int li, std::int64_t ndl, std::int64_t ndh, std::int64_t acc[3]) const {
+  [[gnu::always_inline]] void add_light(int li, std::int64_t ndl, std::int64_t ndh,
+                                        std::int64_t acc[3]) const {
     const bool no_spec = skipping_ && ndh < spec_zero_below_;
     if (no_spec && ndl == 0) return;  // adds exactly 0
     const MaterialCmd& m = ctx_->material;

@@ -655,8 +655,7 @@ void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t
     return quad_level(std::int64_t{v} * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
   };
   if (point_.steppable()) {
-    PointShader::SpanStepper st = point_.span_stepper(xa, y);
-    for (std::int32_t x = 0; x < n; ++x, point_.step(st)) out[x] = point_.shade_stepped(st);
+    point_.shade_run(point_.span_stepper(xa, y), n, out);
   } else {
     std::int32_t g[3];
     Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
