@@ -103,7 +103,11 @@ bool decode_header(std::span<const std::uint8_t> m, EncodedFrame& out) {
     if (!v.is_number_unsigned()) return false;
     out.counters.emplace_back(k, v.get<std::uint64_t>());
   }
-  out.kind = static_cast<FrameKind>(get(m, 6, 2));
+  const auto kind = get(m, 6, 2);
+  if (kind != static_cast<std::uint16_t>(FrameKind::device) &&
+      kind != static_cast<std::uint16_t>(FrameKind::reference))
+    return false;  // a kind the protocol does not define
+  out.kind = static_cast<FrameKind>(kind);
   out.id = static_cast<std::uint32_t>(get(m, 8, 4));
   out.width = static_cast<int>(get(m, 12, 2));
   out.height = static_cast<int>(get(m, 14, 2));

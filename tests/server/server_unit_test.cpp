@@ -56,6 +56,10 @@ TEST(Protocol, EncodeDecodeRoundTrip) {
   std::string bad_length = f->bytes;
   bad_length[36] = static_cast<char>(bad_length[36] + 1);
   EXPECT_FALSE(decode_header(bytes(bad_length), d));
+  // A kind the protocol does not define (device 0, reference 1) is not a frame either.
+  std::string bad_kind = f->bytes;
+  bad_kind[6] = 2;
+  EXPECT_FALSE(decode_header(bytes(bad_kind), d));
   // Without counters the block is "{}".
   auto empty = encode_frame(FrameKind::device, 1, 5, 3, rgb, 0);
   ASSERT_TRUE(decode_header(bytes(empty->bytes), d));
