@@ -73,7 +73,13 @@ struct Tally {
   std::size_t positions = 0, triangles = 0;
 };
 
-void check_line(std::string_view line, const std::string& where, Tally& tally) {
+// Records a mesh does not use whose parsing in tinyobjloader trusts the file's numbers: skin
+// weights ("vw": a joint id beyond int converted from float, undefined behaviour; found by
+// fuzzing) and tags ("t": counts sized into vectors). They are dropped before parsing.
+bool dropped(std::string_view record) { return record == "vw" || record == "t"; }
+
+// Checks one line; returns whether tinyobjloader is not to see it (dropped()).
+bool check_line(std::string_view line, const std::string& where, Tally& tally) {
   if (line.size() > kMaxObjLineBytes)
     refuse(where, "line longer than " + std::to_string(kMaxObjLineBytes) +
                       " bytes (the limit of an OBJ line)");
@@ -89,19 +95,24 @@ void check_line(std::string_view line, const std::string& where, Tally& tally) {
       refuse(where,
              "more than " + std::to_string(kMaxMeshTriangles) + " triangles (the limit of a mesh)");
   }
+  return dropped(record);
 }
 
 // Every line before tinyobjloader sees the text. Lines end at "\n", "\r\n" or a lone "\r", as
-// tinyobjloader splits them, so that no record escapes the scan.
-void scan_lines(std::string_view text, const std::string& file) {
+// tinyobjloader splits them, so that no record escapes the scan. Returns the text for
+// tinyobjloader: the same, with the dropped records blanked (line numbers unchanged).
+std::string scan_lines(std::string_view text, const std::string& file) {
+  std::string for_parser(text);
   Tally tally;
   std::size_t number = 0;
   for (std::size_t start = 0; start < text.size();) {
     std::size_t end = text.find_first_of("\r\n", start);
     if (end == std::string_view::npos) end = text.size();
-    check_line(text.substr(start, end - start), at_line(file, ++number), tally);
+    if (check_line(text.substr(start, end - start), at_line(file, ++number), tally))
+      for_parser.replace(start, end - start, end - start, ' ');
     start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
   }
+  return for_parser;
 }
 
 glm::dvec3 unit_normal(const tinyobj::attrib_t& attrib, int normal_index, const std::string& file) {
@@ -151,12 +162,12 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const std::string& file) {
 }  // namespace
 
 Mesh parse_obj(std::string_view text, const std::string& file) {
-  scan_lines(text, file);
+  const std::string for_parser = scan_lines(text, file);
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = true;
   cfg.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(std::string(text), "", cfg)) refuse(file, reader.Error());
+  if (!reader.ParseFromString(for_parser, "", cfg)) refuse(file, reader.Error());
   Mesh m = build_mesh(reader, file);
   if (m.triangles.empty()) refuse(file, "no faces");
   // One vertex per distinct (position, normal) pair: up to three per triangle, more than the

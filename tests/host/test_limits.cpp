@@ -161,3 +161,12 @@ TEST(SceneLimits, ResolutionIsTheDevicesViewport) {
   EXPECT_EQ(e.path(), "/resolution/0");
   EXPECT_EQ(e.problem(), "value 4097 out of range [1, 4096]");
 }
+
+TEST(ObjRecords, SkinWeightsAndTagsAreDroppedBeforeParsing) {
+  // tinyobjloader converted a skin weight's joint id of 1e30 from float to int (undefined
+  // behaviour, found by fuzzing) and sizes vectors from a tag's counts; the mesh uses neither.
+  const Mesh m = parse_obj(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 1e30 0.5\nt crease 999999999/0/0 1\nf 1 2 3\n", "w.obj");
+  EXPECT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.positions.size(), 3u);
+}
