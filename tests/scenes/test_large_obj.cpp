@@ -1,7 +1,7 @@
 // A 200,000-face OBJ loads and renders in bounded time (issue 13; docs/DECISIONS.md): the OBJ is
 // generated here (8 MB, never committed), read through a scene file as `tinyphong render` reads
 // it, and drawn by the device with buffers sized for the scene. Measured with the release CLI:
-// about 2 s; the bound below leaves room for the Debug and sanitizer builds.
+// 1.1 s (Debug: 2.5 s); the bound below leaves room for the sanitizer build and a busy machine.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -66,7 +66,8 @@ TEST(LargeObj, TwoHundredThousandFacesLoadAndRenderInBoundedTime) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   EXPECT_EQ(counter(frame, "triangles_in"), 200000u);
-  EXPECT_GT(counter(frame, "pixels_written"), 512u * 512u * 3 / 4);  // the grid covers the view
+  // The grid spans [-1, 1]^2 of the default view's [-1.25, 1.25]^2: 64 % of the pixels.
+  EXPECT_GT(counter(frame, "pixels_written"), 512u * 512u * 63 / 100);
   EXPECT_LT(seconds, 60.0) << "load and render took " << seconds << " s";
   std::printf("200,000 faces: loaded and rendered in %.2f s\n", seconds);
   fs::remove_all(dir);
