@@ -14,10 +14,19 @@ namespace {
 constexpr std::size_t align8(std::size_t v) { return (v + 7) & ~std::size_t{7}; }
 
 bool coord_ok(q15_16 v) { return v.raw() >= -kMaxCoordRaw && v.raw() <= kMaxCoordRaw; }
+// A raw component is any int32 (|raw| <= 2^31), not only a unit vector's: each square is at most
+// 2^62 and the sum of three at most 3 * 2^62, which fits an unsigned 64-bit integer but not a
+// signed one (the signed sum overflowed; found by fuzzing the command stream, tests/fuzz).
+std::uint64_t square(std::int32_t raw) {
+  const std::int64_t wide = raw;
+  const auto magnitude = static_cast<std::uint64_t>(wide < 0 ? -wide : wide);
+  return magnitude * magnitude;
+}
 bool unit_ok(const Vec3u& v) {
-  const std::int64_t x = v.x.raw(), y = v.y.raw(), z = v.z.raw();
-  const std::int64_t d = x * x + y * y + z * z - (std::int64_t{1} << 60);  // < 3 * 2^60
-  return d >= -kUnitToleranceRaw && d <= kUnitToleranceRaw;
+  const std::uint64_t sum = square(v.x.raw()) + square(v.y.raw()) + square(v.z.raw());
+  constexpr std::uint64_t kOne = std::uint64_t{1} << 60;
+  const std::uint64_t distance = sum >= kOne ? sum - kOne : kOne - sum;
+  return distance <= static_cast<std::uint64_t>(kUnitToleranceRaw);
 }
 bool in_unit_interval(q1_30 v) { return v.raw() >= 0 && v.raw() <= q1_30::one().raw(); }
 

@@ -1,18 +1,13 @@
-// Sphere-like test meshes of the papers (scenes/README.md, "Meshes"), the single triangle, OBJ
-// loading.
+// Sphere-like test meshes of the papers (scenes/README.md, "Meshes") and the single triangle
+// (OBJ files: obj_reader.cpp).
 #include "host/meshes.hpp"
 
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 #include <utility>
-
-#include <tiny_obj_loader.h>
 
 namespace tp::host {
 
@@ -146,98 +141,6 @@ void compute_normals(Mesh& m) {
     for (auto v : t) m.normals[v] += n;
   }
   for (auto& n : m.normals) n = glm::length(n) > 0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
-}
-
-namespace {
-
-// tinyobjloader reads a token that is not a number ("nan", "inf", "1e999", "x") as 0 or as
-// infinity without a word, so the numbers of every vertex record are read here first: each
-// must be a finite double. The error names the file, the line and the field.
-void check_obj_numbers(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  static constexpr const char* kFields[] = {"x", "y", "z", "w"};
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF files
-    std::istringstream words(line);
-    std::string record;
-    words >> record;
-    if (record != "v" && record != "vn" && record != "vt") continue;
-    std::string token;
-    for (int k = 0; words >> token; ++k) {
-      if (token[0] == '#') break;
-      double value = 0;
-      const char* begin = token.data() + (token[0] == '+' ? 1 : 0);  // from_chars takes no '+'
-      const char* end = token.data() + token.size();
-      const auto [ptr, ec] = std::from_chars(begin, end, value);
-      if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
-        const std::string field = k < 4 ? kFields[k] : "value " + std::to_string(k + 1);
-        throw MeshError("malformed OBJ " + file.string() + ":" + std::to_string(number) + ": " +
-                        record + " " + field + " '" + token.substr(0, 32) +
-                        "' is not a finite number");
-      }
-    }
-  }
-}
-
-}  // namespace
-
-Mesh load_obj(const std::filesystem::path& file) {
-  tinyobj::ObjReaderConfig cfg;
-  cfg.triangulate = true;
-  cfg.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!std::filesystem::is_regular_file(file))
-    throw MeshError("mesh file not found: " + file.string());
-  check_obj_numbers(file);
-  if (!reader.ParseFromFile(file.string(), cfg))
-    throw MeshError("malformed OBJ " + file.string() + ": " + reader.Error());
-  const auto& attrib = reader.GetAttrib();
-  Mesh m;
-  bool missing_normals = false;
-  // OBJ indexes positions and normals separately; one mesh vertex per distinct pair.
-  std::map<std::pair<int, int>, std::uint32_t> index;
-  const auto nv = static_cast<int>(attrib.vertices.size() / 3);
-  const auto nn = static_cast<int>(attrib.normals.size() / 3);
-  for (const auto& shape : reader.GetShapes()) {
-    const auto& ids = shape.mesh.indices;
-    for (std::size_t f = 0; f + 2 < ids.size(); f += 3) {
-      std::array<std::uint32_t, 3> tri{};
-      for (int k = 0; k < 3; ++k) {
-        const auto& id = ids[f + static_cast<std::size_t>(k)];
-        if (id.vertex_index < 0 || id.vertex_index >= nv)
-          throw MeshError("malformed OBJ " + file.string() + ": face refers to a missing vertex");
-        if (id.normal_index >= nn)
-          throw MeshError("malformed OBJ " + file.string() + ": face refers to a missing normal");
-        if (id.normal_index < 0) missing_normals = true;
-        const auto key = std::make_pair(id.vertex_index, id.normal_index);
-        auto it = index.find(key);
-        if (it == index.end()) {
-          const auto vi = static_cast<std::size_t>(3 * id.vertex_index);
-          m.positions.emplace_back(attrib.vertices[vi], attrib.vertices[vi + 1],
-                                   attrib.vertices[vi + 2]);
-          glm::dvec3 n(0, 0, 1);
-          if (id.normal_index >= 0) {
-            const auto ni = static_cast<std::size_t>(3 * id.normal_index);
-            n = glm::dvec3(attrib.normals[ni], attrib.normals[ni + 1], attrib.normals[ni + 2]);
-            if (!(glm::length(n) > 0))
-              throw MeshError("malformed OBJ " + file.string() + ": zero normal");
-            n = glm::normalize(n);
-          }
-          m.normals.push_back(n);
-          it = index.emplace(key, static_cast<std::uint32_t>(m.positions.size() - 1)).first;
-        }
-        tri[static_cast<std::size_t>(k)] = it->second;
-      }
-      m.triangles.push_back(tri);
-    }
-  }
-  if (m.triangles.empty()) throw MeshError("malformed OBJ " + file.string() + ": no faces");
-  for (const auto& p : m.positions)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw MeshError("malformed OBJ " + file.string() + ": non-finite coordinate");
-  if (missing_normals) compute_normals(m);
-  return m;
 }
 
 namespace {

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -52,9 +54,21 @@ Mesh teapot(int tess = 8);
 // Number of triangles teapot(tess) produces, from the patch structure (for documentation/tests).
 int teapot_triangle_count(int tess);
 
+// Limits of the OBJ reader (scenes/README.md, "Limits"). A file beyond one is refused with a
+// MeshError naming the file, the limit and, where the count is crossed, the line: never read
+// in part, never truncated. 2^20 triangles load and render in seconds (`tinyphong render`,
+// release: a 200,000-face OBJ in 1.1 s, 2^20 faces in 3.4 s; docs/DECISIONS.md).
+inline constexpr std::size_t kMaxObjFileBytes = std::size_t{64} << 20;  // 64 MiB
+inline constexpr std::size_t kMaxObjLineBytes = 4096;
+// One mesh (and, in host/scene.hpp, all meshes of a scene together).
+inline constexpr std::size_t kMaxMeshVertices = std::size_t{1} << 20;
+inline constexpr std::size_t kMaxMeshTriangles = std::size_t{1} << 20;
+
 // Positions and normals (normals computed, area-weighted, when the file has none).
-// Throws MeshError naming the file on a missing or malformed file.
+// Throws MeshError naming the file (and line) on a missing, malformed or too large file.
 Mesh load_obj(const std::filesystem::path& file);
+// The same from the file's text; `file` names it in errors.
+Mesh parse_obj(std::string_view text, const std::string& file);
 
 // Generator by name: "octa-sphere" {subdivisions}, "uv-sphere" {slices, stacks},
 // "dodecahedron-30" {}, "triangle" {}, "quad" {half_size}, "teapot" {tessellation}.

@@ -3,13 +3,13 @@
 #include "host/scene.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "firmware/types.hpp"
+#include "host/text_file.hpp"
 
 namespace tp::host {
 
@@ -229,6 +229,32 @@ MeshSpec read_mesh(const Reader& r, const json& j, const std::string& p) {
   return m;
 }
 
+// The meshes, within the scene's limits: their number first, then the running totals of
+// vertices and triangles (the error names the mesh that crosses one).
+std::vector<MeshSpec> read_meshes(const Reader& r, const json& meshes) {
+  if (!meshes.is_array() || meshes.empty()) r.fail("/meshes", "expected a non-empty array");
+  if (meshes.size() > kMaxSceneMeshes)
+    r.fail("/meshes", "at most " + std::to_string(kMaxSceneMeshes) + " meshes, got " +
+                          std::to_string(meshes.size()));
+  std::vector<MeshSpec> out;
+  std::size_t vertices = 0, triangles = 0;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const std::string path = "/meshes/" + std::to_string(i);
+    out.push_back(read_mesh(r, meshes[i], path));
+    vertices += out.back().mesh.positions.size();
+    triangles += out.back().mesh.triangles.size();
+    if (vertices > kMaxSceneVertices)
+      r.fail(path, "the meshes have " + std::to_string(vertices) +
+                       " vertices together, more than " + std::to_string(kMaxSceneVertices) +
+                       " (the limit of a scene)");
+    if (triangles > kMaxSceneTriangles)
+      r.fail(path, "the meshes have " + std::to_string(triangles) +
+                       " triangles together, more than " + std::to_string(kMaxSceneTriangles) +
+                       " (the limit of a scene)");
+  }
+  return out;
+}
+
 Scene read_scene(const Reader& r, const json& j) {
   Scene s;
   s.file = r.file;
@@ -240,8 +266,9 @@ Scene read_scene(const Reader& r, const json& j) {
   if (j.contains("resolution")) {
     const json& res = j["resolution"];
     if (!res.is_array() || res.size() != 2) r.fail("/resolution", "expected [width, height]");
-    s.width = r.integer(res[0], "/resolution/0", 1, 8192);
-    s.height = r.integer(res[1], "/resolution/1", 1, 8192);
+    constexpr int kMax = static_cast<int>(fw::kMaxDimension);  // the device's viewport
+    s.width = r.integer(res[0], "/resolution/0", 1, kMax);
+    s.height = r.integer(res[1], "/resolution/1", 1, kMax);
   }
   s.camera = read_camera(r, j["camera"], "/camera");
   const json& lights = j["lights"];
@@ -252,10 +279,7 @@ Scene read_scene(const Reader& r, const json& j) {
   for (std::size_t i = 0; i < lights.size(); ++i)
     s.lights.push_back(read_light(r, lights[i], "/lights/" + std::to_string(i)));
   if (j.contains("material")) s.material = read_material(r, j["material"], "/material");
-  const json& meshes = j["meshes"];
-  if (!meshes.is_array() || meshes.empty()) r.fail("/meshes", "expected a non-empty array");
-  for (std::size_t i = 0; i < meshes.size(); ++i)
-    s.meshes.push_back(read_mesh(r, meshes[i], "/meshes/" + std::to_string(i)));
+  s.meshes = read_meshes(r, j["meshes"]);
   if (j.contains("method")) s.method = r.string(j["method"], "/method");
   if (j.contains("background")) s.background = r.vec3(j["background"], "/background", 0, 1);
   if (j.contains("cull")) s.cull_backfaces = r.boolean(j["cull"], "/cull");
@@ -347,10 +371,17 @@ void reject_deep_nesting(std::string_view text, const std::string& file) {
   }
 }
 
+[[noreturn]] void throw_too_large(const std::string& file) {
+  throw SceneError(
+      file, 0, "",
+      "larger than " + std::to_string(kMaxSceneFileBytes) + " bytes (the limit of a scene file)");
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& file,
                   const std::filesystem::path& base_dir) {
+  if (text.size() > kMaxSceneFileBytes) throw_too_large(file);
   reject_deep_nesting(text, file);
   json j;
   try {
@@ -378,11 +409,12 @@ Scene parse_scene(std::string_view text, const std::string& file,
 }
 
 Scene load_scene(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(file.string(), 0, "", "cannot open scene file");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
+  std::string text;
+  switch (read_text_file(file, kMaxSceneFileBytes, text)) {
+    case ReadResult::ok: break;
+    case ReadResult::cannot_open: throw SceneError(file.string(), 0, "", "cannot open scene file");
+    case ReadResult::too_large: throw_too_large(file.string());
+  }
   return parse_scene(text, file.string(), file.parent_path());
 }
 

@@ -3,6 +3,7 @@
 // eye looks along -z; lights are given in world space in the file and used in eye space).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -36,9 +37,17 @@ class SceneError : public std::runtime_error {
 
 inline constexpr int kMaxLights =
     16;  // the device has 16 light slots (docs/CONVENTIONS.md, "Limits")
+// Limits of a scene file (scenes/README.md, "Limits"). Beyond one is a SceneError naming the
+// file, the limit and, where there is one, the line and JSON pointer; nothing is truncated.
+// Lines have no limit of their own (JSON may be one line): the file size bounds them.
+inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{1} << 20;  // 1 MiB; scenes are ~1 KB
 // JSON nesting a scene file may use (scenes need 5 levels): deeper files are refused before
 // they are parsed, because the JSON library recurses per level.
 inline constexpr int kMaxSceneNesting = 64;
+inline constexpr std::size_t kMaxSceneMeshes = 64;
+// All meshes of a scene together: the same bounds as one mesh (host/meshes.hpp).
+inline constexpr std::size_t kMaxSceneVertices = kMaxMeshVertices;
+inline constexpr std::size_t kMaxSceneTriangles = kMaxMeshTriangles;
 
 enum class CameraKind { Orthographic, Perspective };
 

@@ -6,6 +6,7 @@
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "firmware/types.hpp"
 #include "host/device_renderer.hpp"
 #include "host/image_io.hpp"
 #include "host/metrics.hpp"
@@ -46,13 +48,29 @@ Scene load(const SceneOptions& o) {
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;
+    constexpr int kMax = static_cast<int>(tp::fw::kMaxDimension);  // the device's viewport
     if (std::sscanf(o.size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
-        w <= 0 || h <= 0)
-      throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, got '" + o.size + "'");
+        w <= 0 || h <= 0 || w > kMax || h > kMax)
+      throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, each 1.." +
+                                               std::to_string(kMax) + ", got '" + o.size + "'");
     s.width = w;
     s.height = h;
   }
   return s;
+}
+
+// The device's buffers sized for the scene's meshes: DeviceRenderer's defaults hold 2^17
+// vertices, a scene may have up to kMaxSceneVertices (host/scene.hpp).
+struct Capacity {
+  std::uint32_t vertices = 0, indices = 0;
+};
+Capacity capacity_for(const Scene& s) {
+  std::size_t vertices = 0, triangles = 0;
+  for (const auto& m : s.meshes) {
+    vertices += m.mesh.positions.size();
+    triangles += m.mesh.triangles.size();
+  }
+  return {static_cast<std::uint32_t>(vertices), static_cast<std::uint32_t>(3 * triangles)};
 }
 
 double radians(double deg) { return deg * 3.14159265358979323846 / 180.0; }
@@ -73,7 +91,8 @@ void print_comparison(const Comparison& c) {
 
 int run_render(const SceneOptions& o, const std::string& out, bool compare_ref) {
   const Scene scene = load(o);
-  DeviceRenderer device(scene.width, scene.height);
+  const Capacity cap = capacity_for(scene);
+  DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);
   const DeviceFrame frame = device.render(radians(o.rotate_deg));
   write_png(out, frame.image());
@@ -92,7 +111,8 @@ int run_render(const SceneOptions& o, const std::string& out, bool compare_ref) 
 int run_reference(const SceneOptions& o, const std::string& out, const std::string& exr,
                   bool angular) {
   const Scene scene = load(o);
-  DeviceRenderer device(scene.width, scene.height);
+  const Capacity cap = capacity_for(scene);
+  DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);  // the same checks as a device render: one definition of "valid"
   const Interpolation interp = angular ? Interpolation::Angular : Interpolation::Phong;
   const ReferenceFrame ref = device.render_reference(radians(o.rotate_deg), interp);

@@ -20,6 +20,8 @@ packages=(
   python3 curl
   # formatting check (tests/format)
   clang-format-14
+  # fuzz targets (tests/fuzz, the `fuzz` preset): clang 14 and its libFuzzer runtime
+  clang libclang-rt-14-dev
 )
 
 missing=()

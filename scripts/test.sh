@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # Every test, from a fresh Debian 12 machine: dependencies, configure, build, test — the
-# regular (dev) build and the sanitizer (ASan + UBSan) build.
-# Options: --fast   only tests labelled "fast" (skips slow sweeps and the browser suite)
-#          --preset P  only that preset (dev, sanitize or release)
+# regular (dev) build, the sanitizer (ASan + UBSan) build and the fuzz targets (clang's
+# libFuzzer: the committed corpora, then 60 s of fuzzing per target; docs/FUZZING.md).
+# Options: --fast   only tests labelled "fast" (skips slow sweeps, the browser suite and the
+#                   60 s fuzzing runs; the fuzz corpora still run)
+#          --preset P  only that preset (dev, sanitize, fuzz or release)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 label_args=()
-presets=(dev sanitize)
+presets=(dev sanitize fuzz)
 while [ $# -gt 0 ]; do
   case "$1" in
     --fast) label_args=(-L fast) ;;
     --preset) presets=("$2"); shift ;;
-    *) echo "usage: scripts/test.sh [--fast] [--preset dev|sanitize|release]"; exit 2 ;;
+    *) echo "usage: scripts/test.sh [--fast] [--preset dev|sanitize|fuzz|release]"; exit 2 ;;
   esac
   shift
 done

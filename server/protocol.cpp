@@ -77,7 +77,11 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
   put16(b, 14, static_cast<std::uint16_t>(height));
   put16(b, 16, static_cast<std::uint16_t>(PixelFormat::rgb888));
   put16(b, 18, static_cast<std::uint16_t>(f->header_bytes));
-  const double us = std::clamp(render_ms * 1000.0, 0.0, 4.0e9);
+  // Saturates at the field's largest value, so that every time a header can carry (and
+  // decode_header gives) encodes back to itself (it saturated at 4e9 before: found by the
+  // frame header's fuzz target).
+  constexpr double kMaxMicroseconds = 4294967295.0;  // 2^32 - 1
+  const double us = std::clamp(render_ms * 1000.0, 0.0, kMaxMicroseconds);
   put32(b, 20, static_cast<std::uint32_t>(std::lround(us)));
   put64(b, 24, f->checksum);
   put32(b, 32, static_cast<std::uint32_t>(rgb.size()));
@@ -103,7 +107,11 @@ bool decode_header(std::span<const std::uint8_t> m, EncodedFrame& out) {
     if (!v.is_number_unsigned()) return false;
     out.counters.emplace_back(k, v.get<std::uint64_t>());
   }
-  out.kind = static_cast<FrameKind>(get(m, 6, 2));
+  const auto kind = get(m, 6, 2);
+  if (kind != static_cast<std::uint16_t>(FrameKind::device) &&
+      kind != static_cast<std::uint16_t>(FrameKind::reference))
+    return false;  // a kind the protocol does not define
+  out.kind = static_cast<FrameKind>(kind);
   out.id = static_cast<std::uint32_t>(get(m, 8, 4));
   out.width = static_cast<int>(get(m, 12, 2));
   out.height = static_cast<int>(get(m, 14, 2));

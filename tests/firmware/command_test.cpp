@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <functional>
+#include <limits>
 
 #include "helpers.hpp"
 
@@ -126,6 +127,12 @@ TEST(Commands, TypedErrorsChangeNothing) {
                  light([](LightCmd& l) { l.color[0] = q16(17); }));
   expect_refused("direction not unit", Error::kNotUnit, light([](LightCmd& l) {
                    l.direction = Vec3u{q30(0), q30(0.1), q30(0.999)};
+                 }));
+  // The largest raw components: their squares summed overflowed a signed 64-bit integer
+  // (undefined behaviour; found by fuzzing the command stream).
+  expect_refused("direction of the largest components", Error::kNotUnit, light([](LightCmd& l) {
+                   const auto most = q1_30::from_raw(std::numeric_limits<std::int32_t>::min());
+                   l.direction = Vec3u{most, most, most};
                  }));
   expect_refused("point out of range", Error::kOutOfRange, light([](LightCmd& l) {
                    l.type = LightType::kPoint;
@@ -293,6 +300,27 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
   EXPECT_EQ(rig.dev.words_consumed(), 2u);
   EXPECT_FALSE(rig.dev.state().cull_back_faces);
   EXPECT_EQ(rig.dev.state().shading.eye, EyeMode::kInfinite);
+}
+
+// The counts and ranges of draws and uploads come from the stream: each is checked (in 64-bit
+// arithmetic where first + count could wrap), never used to index memory unchecked.
+TEST(CommandStream, DrawAndUploadRangesAreCheckedNotTrusted) {
+  expect_stream_refused("draw range wraps", Error::kIndexOutOfRange,
+                        {command_header(Opcode::kDraw, 2), 0xfffffffdu, 6});
+  expect_stream_refused("draw count 2^32 - 1", Error::kIndexOutOfRange,
+                        {command_header(Opcode::kDraw, 2), 0, 0xffffffffu});
+  expect_stream_refused("draw count not a multiple of 3", Error::kBadArgument,
+                        {command_header(Opcode::kDraw, 2), 0, 4});
+  expect_stream_refused("index upload wraps", Error::kIndexOutOfRange,
+                        {command_header(Opcode::kUploadIndices, 3), 0xffffffffu, 1, 0});
+  expect_stream_refused(
+      "vertex upload past the capacity", Error::kIndexOutOfRange,
+      {command_header(Opcode::kUploadVertices, 8), 0xffffffffu, 1, 0, 0, 0, 0, 0, 1u << 30});
+  expect_stream_refused(
+      "vertex count 2^32 - 1 with one vertex", Error::kBadLength,
+      {command_header(Opcode::kUploadVertices, 8), 0, 0xffffffffu, 0, 0, 0, 0, 0, 1u << 30});
+  expect_stream_refused("payload of 65535 words, 2 present", Error::kBadLength,
+                        {command_header(Opcode::kDraw, 0xffff), 0, 3});
 }
 
 TEST(Framebuffer, Rgb565KeepsTopBitsOfRgb888) {

@@ -56,6 +56,17 @@ TEST(Protocol, EncodeDecodeRoundTrip) {
   std::string bad_length = f->bytes;
   bad_length[36] = static_cast<char>(bad_length[36] + 1);
   EXPECT_FALSE(decode_header(bytes(bad_length), d));
+  // A kind the protocol does not define (device 0, reference 1) is not a frame either.
+  std::string bad_kind = f->bytes;
+  bad_kind[6] = 2;
+  EXPECT_FALSE(decode_header(bytes(bad_kind), d));
+  // Every render time the u32 field holds round-trips; longer ones saturate at its largest.
+  auto slowest = encode_frame(FrameKind::device, 1, 5, 3, rgb, 4294967.295);
+  ASSERT_TRUE(decode_header(bytes(slowest->bytes), d));
+  EXPECT_DOUBLE_EQ(d.render_ms, 4294967.295);
+  auto slower = encode_frame(FrameKind::device, 1, 5, 3, rgb, 1e12);
+  ASSERT_TRUE(decode_header(bytes(slower->bytes), d));
+  EXPECT_DOUBLE_EQ(d.render_ms, 4294967.295);
   // Without counters the block is "{}".
   auto empty = encode_frame(FrameKind::device, 1, 5, 3, rgb, 0);
   ASSERT_TRUE(decode_header(bytes(empty->bytes), d));

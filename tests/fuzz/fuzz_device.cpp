@@ -1,0 +1,120 @@
+// Fuzz target: the device's command stream (firmware/command.cpp) on arbitrary 32-bit words.
+//
+// The input's bytes are little-endian words. Device A runs them one command at a time (the
+// header's length says where a command ends); device B runs the whole stream with one execute().
+// Properties, besides no crash and no undefined behaviour:
+//  - a command that fails changes nothing: DeviceState, counters and every byte of the memory
+//    block are compared before and after it, and last_error() is its error;
+//  - a command that succeeds leaves last_error() == kOk;
+//  - execute() on the whole stream stops where A met its first error, with the same error, the
+//    same words consumed, and the same state, counters and memory (or, without an error,
+//    consumes everything and ends in A's state).
+// After its first error A goes on with the next command, so that the fuzzer can keep building
+// state past a bad command.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <new>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "firmware/device.hpp"
+#include "tests/fuzz/fuzz_check.hpp"
+
+namespace {
+
+using tp::fw::Device;
+using tp::fw::Error;
+
+// Room for the span buffer (12 KiB), a viewport of about 40 x 40 and a hundred vertices: a
+// command needing more is refused with kOutOfMemory, which is itself a path under test. Small,
+// because every command snapshots it (at 96 KiB the copies made fuzzing 3 times slower).
+constexpr std::size_t kMemoryBytes = 32 * 1024;
+
+std::vector<std::uint32_t> words_of(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::uint32_t> words(size / 4);
+  for (std::size_t i = 0; i < words.size(); ++i)
+    words[i] = std::uint32_t{data[4 * i]} | std::uint32_t{data[4 * i + 1]} << 8 |
+               std::uint32_t{data[4 * i + 2]} << 16 | std::uint32_t{data[4 * i + 3]} << 24;
+  return words;
+}
+
+// Everything a command may change, as bytes.
+struct Snapshot {
+  std::array<std::byte, sizeof(tp::fw::DeviceState)> state;
+  std::array<std::byte, sizeof(tp::fw::Counters)> counters;
+  std::vector<std::byte> memory;
+};
+
+// The state's pointer to its own device's counters differs between A and B; it is left out.
+constexpr std::size_t kCountersPointerAt =
+    offsetof(tp::fw::DeviceState, shading) + offsetof(tp::fw::ShadeContext, counters);
+static_assert(std::is_standard_layout_v<tp::fw::DeviceState>);
+
+void take(const Device& d, std::span<const std::byte> memory, Snapshot& s) {
+  std::memcpy(s.state.data(), &d.state(), sizeof(tp::fw::DeviceState));
+  std::fill_n(s.state.begin() + kCountersPointerAt, sizeof(tp::fw::Counters*), std::byte{0});
+  std::memcpy(s.counters.data(), &d.counters(), sizeof(tp::fw::Counters));
+  s.memory.assign(memory.begin(), memory.end());
+}
+
+bool same(const Snapshot& a, const Snapshot& b) {
+  return a.state == b.state && a.counters == b.counters && a.memory == b.memory;
+}
+
+// Where the command at `at` ends: its header's payload length, cut at the end of the stream
+// (execute() then refuses it with kBadLength).
+std::size_t command_end(std::span<const std::uint32_t> words, std::size_t at) {
+  const std::size_t len = words[at] >> 16;
+  return std::min(words.size(), at + 1 + len);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::vector<std::uint32_t> words = words_of(data, size);
+  static std::vector<std::byte> memory_a(kMemoryBytes), memory_b(kMemoryBytes);
+  std::fill(memory_a.begin(), memory_a.end(), std::byte{0});
+  std::fill(memory_b.begin(), memory_b.end(), std::byte{0});
+  // In zeroed storage, so that the padding bytes of the two devices' states are alike too.
+  alignas(Device) static std::array<std::byte, sizeof(Device)> storage_a, storage_b;
+  storage_a.fill(std::byte{0});
+  storage_b.fill(std::byte{0});
+  Device& a = *new (storage_a.data()) Device{std::span<std::byte>(memory_a)};
+  Device& b = *new (storage_b.data()) Device{std::span<std::byte>(memory_b)};
+
+  const Error whole = b.execute(words);
+  Snapshot before, after, at_b;
+  take(b, memory_b, at_b);
+
+  bool compared = false;
+  for (std::size_t at = 0; at < words.size();) {
+    const std::size_t end = command_end(words, at);
+    take(a, memory_a, before);
+    const Error e = a.execute(std::span<const std::uint32_t>(words).subspan(at, end - at));
+    TP_FUZZ_CHECK(a.last_error() == e, "last_error() is the command's result");
+    if (e != Error::kOk) {
+      take(a, memory_a, after);
+      TP_FUZZ_CHECK(same(before, after), "a failing command changed the device");
+      if (!compared) {
+        TP_FUZZ_CHECK(whole == e, "execute() on the stream fails with the same error");
+        TP_FUZZ_CHECK(b.words_consumed() == at, "execute() stops at the failing command");
+        TP_FUZZ_CHECK(same(after, at_b), "execute() on the stream ends in the same state");
+        compared = true;
+      }
+    }
+    at = end;
+  }
+  if (!compared) {
+    take(a, memory_a, after);
+    TP_FUZZ_CHECK(whole == Error::kOk, "execute() on a valid stream succeeds");
+    TP_FUZZ_CHECK(b.words_consumed() == words.size(), "execute() consumes a valid stream");
+    TP_FUZZ_CHECK(same(after, at_b), "execute() on the stream ends in the same state");
+  }
+  a.~Device();
+  b.~Device();
+  return 0;
+}
