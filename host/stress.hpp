@@ -55,7 +55,6 @@ struct Bound {
   int max_abs = 0;                // levels
   double mean_abs = 0;            // levels
   std::uint64_t saturations = 0;  // per frame
-  std::string_view note;          // why the bound is what it is, when it is a known failure
 };
 std::optional<Bound> bound_of(std::string_view case_name, std::string_view method);
 const std::vector<Bound>& bounds();
@@ -77,6 +76,7 @@ struct Result {
   Comparison error;  // device against the double reference
   std::uint64_t saturations = 0;
   std::optional<Bound> bound;
+  std::string_view known_failure;  // why the bound is large, where it is (stress::known_failure)
   Verdict verdict = Verdict::kNoBound;
   double seconds = 0;  // wall time of the device render
 };
@@ -86,6 +86,7 @@ struct Options {
   std::uint64_t seed = kDefaultSeed;
   std::vector<std::string> methods;  // empty: every method
   std::string case_filter;           // substring of the case name; empty: all
+  std::string image_dir;  // when set: CASE.reference.png and CASE.METHOD.png written there
 };
 
 // Runs the selected cases; `progress` (may be empty) is called after each result.

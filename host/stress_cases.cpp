@@ -2,6 +2,7 @@
 // in-memory scene. Meshes are built here (or by host/meshes.hpp's generators) in model space;
 // everything else is a Scene as a scene file would describe it.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -38,6 +39,13 @@ using NormalAt = std::function<glm::dvec3(const glm::dvec3&)>;
 constexpr double kPi = std::numbers::pi;
 
 double radians(double deg) { return deg * kPi / 180.0; }
+
+// Shortest round-trip-ish text of a parameter for the case descriptions ("1000", "1e-06").
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
 
 // nx × ny quads over [lo, hi] in the plane z = 0, counter-clockwise seen from +z, two triangles
 // per quad, normals from `normal` (normalised here).
@@ -272,8 +280,8 @@ Case near_light_case(int percent, bool quick) {
 }
 
 Case scale_case(const std::string& name, double radius, bool quick) {
-  return {name, "scale", "sphere-512 of radius " + std::to_string(radius) + " framed to fill",
-          quick, [name, radius](Rng& rng) {
+  return {name, "scale", "sphere-512 of radius " + number(radius) + " framed to fill", quick,
+          [name, radius](Rng& rng) {
             Scene s = sphere_scene(name, rng);
             s.meshes.back().transform.scale = radius;
             const double e = 1.25 * radius;
@@ -418,8 +426,8 @@ std::vector<Case> make_cases() {
                }});
   const auto ab_case = [](const std::string& name, double a, double b, int n, bool quick) {
     return Case{name, "ab-range",
-                "sphere-512, n = " + std::to_string(n) + ", (a, b) = (" + std::to_string(a) + ", " +
-                    std::to_string(b) + ") given",
+                "sphere-512, n = " + std::to_string(n) + ", (a, b) = (" + number(a) + ", " +
+                    number(b) + ") given",
                 quick, [=](Rng& rng) {
                   Scene s = sphere_scene(name, rng);
                   s.material.n = n;

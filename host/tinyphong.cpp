@@ -6,6 +6,7 @@
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
+//                    [--images DIR]
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -181,11 +182,18 @@ void list_cases() {
     std::cout << c.name << (c.quick ? "\tquick\t" : "\t\t") << c.family << "\t" << c.what << "\n";
 }
 
-// Exit status 0 when every result is within its documented bound, 1 otherwise.
+// Exit status 0 when every result is within its documented bound, 1 otherwise, 2 when the
+// options select nothing.
 int run_stress(const StressCli& cli) {
   if (cli.list) {
     list_cases();
     return 0;
+  }
+  try {
+    for (const std::string& m : cli.options.methods) (void)method_from_name(m);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "tinyphong stress: --methods: " << e.what() << "\n";
+    return 2;
   }
   const auto results = stress::run(cli.options, [](const stress::Result& r) {
     std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
@@ -222,6 +230,9 @@ void add_stress(CLI::App& app, StressCli& cli) {
   cmd->add_option("--seed", cli.options.seed, "seed of the cases' random parts");
   cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
   cmd->add_flag("--list", cli.list, "list the cases and exit");
+  cmd->add_option("--images", cli.options.image_dir,
+                  "write each case's reference and device images (PNG) into this folder")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--pin-bounds", cli.bounds_out,
                   "write the measured results as host/stress_bounds.cpp's table rows, with the "
                   "documented margin (docs/STABILITY.md says when that is allowed)");
@@ -284,9 +295,6 @@ int main(int argc, char** argv) {
   } catch (const SceneError& e) {
     std::cerr << "tinyphong: " << e.what() << "\n";
     return 1;
-  } catch (const std::invalid_argument& e) {  // e.g. an unknown method in --methods
-    std::cerr << "tinyphong: " << e.what() << "\n";
-    return 2;
   } catch (const CLI::Error& e) {
     return app.exit(e);
   } catch (const std::exception& e) {

@@ -130,6 +130,14 @@ constexpr bool at_limit(xpos_t x) {
 inline int saturated_ends(xpos_t left, xpos_t right) {
   return (at_limit(left) ? 1 : 0) + (at_limit(right) ? 1 : 0);
 }
+// Whether any span end of the triangle can reach that limit: span ends lie between the
+// vertices' x, so not when every |sx| is below 2^19 subpixels (2^15 pixels) less one pixel.
+constexpr bool may_saturate_x(const Triangle& tri) {
+  constexpr std::int32_t kLimit = (std::int32_t{1} << 19) - 16;
+  for (const ShadeVertex& v : tri.v)
+    if (v.sx >= kLimit || v.sx <= -kLimit) return true;
+  return false;
+}
 
 inline xpos_t pixel_centre(std::int32_t x) {
   return xpos_t::from_raw_sat((std::int64_t{x} << 16) + (std::int64_t{1} << 15));

@@ -131,6 +131,7 @@ KbOneVectorMethod::VertexMemo& KbOneVectorMethod::vertex_of(const ShadeVertex& v
 
 bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   tri_ = &tri;
+  x_may_saturate_ = may_saturate_x(tri);
   counters_ = ctx.counters;
   terms_ = 0;
   chunk_key_ = 0;
@@ -339,7 +340,9 @@ void KbOneVectorMethod::add_exact_term(const OneVectorTerm& t, const Span& s) {
 void KbOneVectorMethod::prepare_span(const Span& s) {
   sections_.begin(s.x1 - s.x0, ambient_);
   const xpos_t xl = edge_x(*tri_, s.left);
-  counters_->saturations += static_cast<std::uint64_t>(saturated_ends(xl, edge_x(*tri_, s.right)));
+  if (x_may_saturate_)
+    counters_->saturations +=
+        static_cast<std::uint64_t>(saturated_ends(xl, edge_x(*tri_, s.right)));
   if (!coherent_) {
     for (int j = 0; j < terms_; ++j) add_exact_term(term_[j], s);
     return;

@@ -19,7 +19,7 @@ Comparison error_of(int max_abs, double mean_abs) {
 }
 
 TEST(StressJudge, EachLimitCanFail) {
-  const Bound b{"c", "m", 10, 1.5, 0, ""};
+  const Bound b{"c", "m", 10, 1.5, 0};
   EXPECT_EQ(judge(error_of(10, 1.5), 0, b), Verdict::kWithin);
   EXPECT_EQ(judge(error_of(11, 1.0), 0, b), Verdict::kExceeds);
   EXPECT_EQ(judge(error_of(5, 1.51), 0, b), Verdict::kExceeds);
@@ -31,6 +31,16 @@ TEST(StressJudge, EachLimitCanFail) {
   EXPECT_FALSE(all_within(results));
   results[1].verdict = Verdict::kWithin;
   EXPECT_TRUE(all_within(results));
+}
+
+// The documented margin: max + 2 levels, mean × 1.05 + 0.05 rounded up to 0.001, saturations
+// exactly.
+TEST(StressBounds, PinnedCarriesTheDocumentedMargin) {
+  const Bound b = pinned("c", "m", 10, 1.0, 3);
+  EXPECT_EQ(b.max_abs, 12);
+  EXPECT_DOUBLE_EQ(b.mean_abs, 1.1);
+  EXPECT_EQ(b.saturations, 3u);
+  EXPECT_DOUBLE_EQ(pinned("c", "m", 0, 0.0101, 0).mean_abs, 0.061);
 }
 
 TEST(StressCases, NamesAreUniqueAndTheQuickSubsetCoversEveryFamily) {
