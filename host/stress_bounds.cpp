@@ -38,7 +38,7 @@ constexpr Known kKnown[] = {
     {"antipodal", " flat gouraud kb kb-noskip kb-decomposition kb-exact ",
      "interpolation model: slerp and Phong's lerp part most between opposite normals"},
     {"sliver-needles", " flat gouraud kb kb-noskip kb-decomposition kb-exact ",
-     "interpolation model: normals turn 70° along each needle"},
+     "interpolation model: normals turn 82° along each needle"},
     {"exponent", " flat gouraud ", "highlights between vertices are missed or smeared"},
     {"scale",
      " flat gouraud phong kb kb-noskip kb-decomposition kb-exact kb-adaptive "
@@ -52,6 +52,9 @@ constexpr Known kKnown[] = {
     {"ab-max", " kb kb-noskip kb-decomposition ", "the given (a, b) replace the fit"},
     {"terminator-exact", " kb kb-noskip kb-decomposition ",
      "diffuse is f(n = 1), not max(0, cos): nonzero at N·L = 0 (KUIJK-BLAKE.md)"},
+    // The two oldest methods on every other case: their model, whatever the numerics.
+    {"", " flat ", "one evaluation per triangle: any variation inside it is error"},
+    {"", " gouraud ", "lighting at the vertices, colour interpolated between them"},
 };
 
 bool lists(std::string_view methods, std::string_view method) {

@@ -122,8 +122,8 @@ inline xpos_t edge_x(const Triangle& tri, const EdgePos& e) {
 }
 // Whether a span end's x saturated in edge_x (or sits exactly at xpos_t's limit, the same
 // value): xpos_t holds ±2^15 pixels while the guard band reaches 65/2 · 4096 pixels
-// (docs/CONVENTIONS.md), so the ends of guard-band-clipped triangles on viewports wider than
-// 1008 pixels can. The methods count it once per span end (Counters::saturations).
+// (docs/CONVENTIONS.md), so the ends of triangles reaching far into the guard band on viewports
+// wider than 1008 pixels can. The methods count it once per span end (Counters::saturations).
 constexpr bool at_limit(xpos_t x) {
   return x.raw() == xpos_t::max_raw || x.raw() == xpos_t::min_raw;
 }
