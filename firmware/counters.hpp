@@ -38,7 +38,13 @@ struct Counters {
   std::uint64_t subtriangles_exact = 0;   // of those, evaluated per pixel (over budget at 4^4)
   std::uint64_t terminator_cells = 0;     // cells (or triangles) clamping N·L per pixel
   std::uint64_t lattice_samples = 0;      // exact Blinn-Phong samples (vertices, midpoints, checks)
-  std::uint64_t frames = 0;               // end_frame calls since construction (not reset)
+  // Overflow guards that fired: intermediate values clamped at the limit of their format where
+  // the firmware does not prove that they fit (docs/STABILITY.md lists every site, counted or
+  // proven). Not counted: the output colour's clamp to [0, 1] (over-exposure is the specified
+  // result) and depth beyond the far plane (the far clip). Zero on every paper scene (tested).
+  // A method counts at setup or span level, never per pixel: `++ctx.counters->saturations`.
+  std::uint64_t saturations = 0;
+  std::uint64_t frames = 0;  // end_frame calls since construction (not reset)
 };
 
 }  // namespace tp::fw

@@ -123,6 +123,7 @@ CounterSnapshot counter_snapshot(const fw::Counters& c) {
           {"subtriangles_exact", c.subtriangles_exact},
           {"terminator_cells", c.terminator_cells},
           {"lattice_samples", c.lattice_samples},
+          {"saturations", c.saturations},
           {"frames", c.frames}};
 }
 

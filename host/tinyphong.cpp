@@ -5,11 +5,14 @@
 //   tinyphong reference scenes/teapot.json -o ref.png [--exr ref.exr] [--angular]
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
+//   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
+//                    [--images DIR]
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -22,6 +25,7 @@
 #include "host/metrics.hpp"
 #include "host/reference.hpp"
 #include "host/scene.hpp"
+#include "host/stress.hpp"
 
 namespace {
 
@@ -186,6 +190,74 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
   return 0;
 }
 
+struct StressCli {
+  stress::Options options;
+  std::string json;
+  std::string bounds_out;
+  bool list = false;
+};
+
+void list_cases() {
+  for (const stress::Case& c : stress::cases())
+    std::cout << c.name << (c.quick ? "\tquick\t" : "\t\t") << c.family << "\t" << c.what << "\n";
+}
+
+// Exit status 0 when every result is within its documented bound, 1 otherwise, 2 when the
+// options select nothing.
+int run_stress(const StressCli& cli) {
+  if (cli.list) {
+    list_cases();
+    return 0;
+  }
+  try {
+    for (const std::string& m : cli.options.methods) (void)method_from_name(m);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "tinyphong stress: --methods: " << e.what() << "\n";
+    return 2;
+  }
+  const auto results = stress::run(cli.options, [](const stress::Result& r) {
+    std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
+              << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
+              << stress::verdict_name(r.verdict) << "\n";
+  });
+  if (results.empty()) {
+    std::cerr << "tinyphong stress: no case matches --cases '" << cli.options.case_filter << "'\n";
+    return 2;
+  }
+  stress::print_tables(std::cout, results);
+  if (!cli.json.empty()) {
+    std::ofstream f(cli.json);
+    stress::write_json(f, results, cli.options);
+    if (!f) throw std::runtime_error("cannot write " + cli.json);
+  }
+  if (!cli.bounds_out.empty()) {
+    std::ofstream f(cli.bounds_out);
+    stress::write_bounds_table(f, results);
+    if (!f) throw std::runtime_error("cannot write " + cli.bounds_out);
+  }
+  return stress::all_within(results) ? 0 : 1;
+}
+
+void add_stress(CLI::App& app, StressCli& cli) {
+  auto* cmd = app.add_subcommand(
+      "stress",
+      "numerical stress suite: every method against the double reference on hard cases, "
+      "with a verdict against its documented bound (docs/STABILITY.md)");
+  cmd->add_flag("--quick", cli.options.quick, "only the quick subset (what the CTest runs)");
+  cmd->add_option("--methods", cli.options.methods, "comma-separated methods (default: all)")
+      ->delimiter(',');
+  cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
+  cmd->add_option("--seed", cli.options.seed, "seed of the cases' random parts");
+  cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
+  cmd->add_flag("--list", cli.list, "list the cases and exit");
+  cmd->add_option("--images", cli.options.image_dir,
+                  "write each case's reference and device images (PNG) into this folder")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--pin-bounds", cli.bounds_out,
+                  "write the measured results as host/stress_bounds.cpp's table rows, with the "
+                  "documented margin (docs/STABILITY.md says when that is allowed)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -227,11 +299,15 @@ int main(int argc, char** argv) {
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
+  StressCli stress_cli;
+  add_stress(app, stress_cli);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
     if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
+    if (app.got_subcommand("stress")) return run_stress(stress_cli);
     if (*methods) {
       for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
       return 0;

@@ -120,6 +120,25 @@ inline xpos_t edge_x(const Triangle& tri, const EdgePos& e) {
   const std::int64_t num = (from << 30) + std::int64_t{e.t.raw()} * (to - from);
   return xpos_t::from_raw_sat(fx::round_shift_right(num, 30 + 4 - 16));
 }
+// Whether a span end's x saturated in edge_x (or sits exactly at xpos_t's limit, the same
+// value): xpos_t holds ±2^15 pixels while the guard band reaches 65/2 · 4096 pixels
+// (docs/CONVENTIONS.md), so the ends of triangles reaching far into the guard band on viewports
+// wider than 1008 pixels can. The methods count it once per span end (Counters::saturations).
+constexpr bool at_limit(xpos_t x) {
+  return x.raw() == xpos_t::max_raw || x.raw() == xpos_t::min_raw;
+}
+inline int saturated_ends(xpos_t left, xpos_t right) {
+  return (at_limit(left) ? 1 : 0) + (at_limit(right) ? 1 : 0);
+}
+// Whether any span end of the triangle can reach that limit: span ends lie between the
+// vertices' x, so not when every |sx| is below 2^19 subpixels (2^15 pixels) less one pixel.
+constexpr bool may_saturate_x(const Triangle& tri) {
+  constexpr std::int32_t kLimit = (std::int32_t{1} << 19) - 16;
+  for (const ShadeVertex& v : tri.v)
+    if (v.sx >= kLimit || v.sx <= -kLimit) return true;
+  return false;
+}
+
 inline xpos_t pixel_centre(std::int32_t x) {
   return xpos_t::from_raw_sat((std::int64_t{x} << 16) + (std::int64_t{1} << 15));
 }

@@ -66,6 +66,7 @@ class KbOneVectorMethod final : public ShadingMethod {
   bool coherent_;
   OChoice o_choice_;
   const Triangle* tri_ = nullptr;
+  bool x_may_saturate_ = false;  // may_saturate_x(*tri_): span ends checked (and counted)
   Counters* counters_ = nullptr;
   Unit o_{};
   MaterialCoeffs coeffs_;

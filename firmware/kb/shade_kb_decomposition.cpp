@@ -22,6 +22,10 @@ std::int64_t product_q30(std::int64_t f, std::int64_t g) {
   return fx::round_shift_right(f, cut) * fx::round_shift_right(g, cut);
 }
 
+bool beyond_max_step(angle_t step) {
+  return step.raw() > cosn::kMaxDThetaRaw || step.raw() < -cosn::kMaxDThetaRaw;
+}
+
 bool beyond_on_one_side(std::int64_t a, std::int64_t b, std::int64_t support) {
   return (a >= support && b >= support) || (a <= -support && b <= -support);
 }
@@ -39,6 +43,7 @@ bool KbDecompositionMethod::setup(const Triangle& tri, const ShadeContext& ctx) 
 inline void KbDecompositionMethod::prepare_span(const Span& s) {
   const int length = s.x1 - s.x0;
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
+  t_.counters->saturations += static_cast<std::uint64_t>(saturated_ends(xl, xr));
   const xpos_t first = pixel_centre(s.x0);
   const Unit nl = t_.n.at(s.left), nr = t_.n.at(s.right);
   terms_ = 0;
@@ -68,6 +73,10 @@ inline void KbDecompositionMethod::prepare_span(const Span& s) {
       t.weight = spec ? light.ws : light.wd;
       const AngleLine ul = angle_line(u1, wrap_pi(u1) + wrap_pi(u2 - u1), xl, xr, first);
       const AngleLine vl = angle_line(v1, v2, xl, xr, first);
+      // make_one_channel steps at most 1 rad per pixel (kb_sections.hpp): a faster step on a
+      // span of two or more pixels is clamped there.
+      if (length > 1 && (beyond_max_step(ul.step) || beyond_max_step(vl.step)))
+        ++t_.counters->saturations;
       t.u.count = make_one_channel(c, ul.first, ul.step, q1_30::one(), length, t.u.seg);
       t.v.count = make_one_channel(c, vl.first, vl.step, q1_30::one(), length, t.v.seg);
       t.u.next = t.v.next = 0;

@@ -34,6 +34,7 @@ bool KbExactMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 // their per-pixel steps.
 inline void KbExactMethod::prepare_span(const Span& s) {
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);
+  t_.counters->saturations += static_cast<std::uint64_t>(saturated_ends(xl, xr));
   const xpos_t first = pixel_centre(s.x0);
   const Unit nl = t_.n.at(s.left), nr = t_.n.at(s.right);
   terms_ = 0;
@@ -71,7 +72,9 @@ inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
       Term& t = term_[j];
       const fx::SinCos a = fx::sin_cos_fast(angle_t::from_raw(static_cast<std::int32_t>(t.n)));
       const fx::SinCos b = fx::sin_cos_fast(angle_t::from_raw(static_cast<std::int32_t>(t.l)));
-      // eq. 1; |cos α| <= 1 up to rounding, each product < 2^60, the sum < 2^61.
+      // eq. 1; |cos α| <= |cos n cos l| + |sin n sin l| <= 1 (Cauchy-Schwarz) up to rounding,
+      // each product < 2^60: the sum over 2^30 is inside Q1.30's [−2, 2), from_raw_sat never
+      // clamps here.
       const std::int64_t cc = std::int64_t{a.cos.raw()} * b.cos.raw();
       const std::int64_t ss = fx::round_shift_right(std::int64_t{a.sin.raw()} * b.sin.raw(), 30);
       const std::int64_t sum = cc + ss * t.cos_gamma.raw();

@@ -131,6 +131,7 @@ KbOneVectorMethod::VertexMemo& KbOneVectorMethod::vertex_of(const ShadeVertex& v
 
 bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   tri_ = &tri;
+  x_may_saturate_ = may_saturate_x(tri);
   counters_ = ctx.counters;
   terms_ = 0;
   chunk_key_ = 0;
@@ -211,6 +212,9 @@ SpanParams KbOneVectorMethod::exact_params(const OneVectorTerm& t, const EdgePos
     // cosn takes at most 1 rad per pixel (it saturates there): clamp the same way.
     const std::int64_t rate = fx::div<dangle_t>(circle.theta, width).raw();
     p.rate = rate > kMaxRate ? kMaxRate : (rate < -kMaxRate ? -kMaxRate : rate);
+    // Counted where a second pixel centre fits in the span (a one-pixel span never steps, so
+    // its clamped rate is unused; spans narrower than a pixel make the huge rates).
+    if (p.rate != rate && width.raw() > (std::int64_t{1} << 16)) ++counters_->saturations;
   }
   const std::int64_t fs = circle.s.raw() >= t.coeffs->b ? 0 : f_at(*t.coeffs, circle.s);
   for (int c = 0; c < 3; ++c) p.scale[c] = scaled(t.weight[c], fs).raw();
@@ -284,6 +288,9 @@ void KbOneVectorMethod::add_span_term(const OneVectorTerm& t, std::int64_t phi_f
   cosn::scale_t scale[3];
   bool zero = true;
   for (int c = 0; c < 3; ++c) {
+    // Below 0 is the quadratic-in-y fit undershooting a zero scale (f(s) = 0 near b), not an
+    // overflow; above Q1.30's range is one (scales are weight·f(s) <= 1 when exact).
+    if (scales[c] > q1_30::max_raw) ++counters_->saturations;
     const std::int64_t q = fx::clamp(scales[c], 0, q1_30::max_raw);
     scale[c] = q1_30::from_raw(static_cast<std::int32_t>(q));
     zero = zero && q == 0;
@@ -293,6 +300,10 @@ void KbOneVectorMethod::add_span_term(const OneVectorTerm& t, std::int64_t phi_f
     return;
   }
   const angle_t dphi = angle_t::from_raw_sat(fx::round_shift_right(rate, 11));
+  // cosn steps at most 1 rad per pixel (cosn_fd.hpp): the exact rate is clamped to that already
+  // (exact_params counts it), a rate from the y-quadratic can overshoot it on a span that steps.
+  if (s.x1 - s.x0 > 1 && (dphi.raw() > cosn::kMaxDThetaRaw || dphi.raw() < -cosn::kMaxDThetaRaw))
+    ++counters_->saturations;
   const std::int64_t phi0 = wrap_pi(phi_first);
   if (skipping_) {
     // φ beyond ±b on one side over the whole span (and not wrapping round past ±π): every
@@ -329,6 +340,9 @@ void KbOneVectorMethod::add_exact_term(const OneVectorTerm& t, const Span& s) {
 void KbOneVectorMethod::prepare_span(const Span& s) {
   sections_.begin(s.x1 - s.x0, ambient_);
   const xpos_t xl = edge_x(*tri_, s.left);
+  if (x_may_saturate_)
+    counters_->saturations +=
+        static_cast<std::uint64_t>(saturated_ends(xl, edge_x(*tri_, s.right)));
   if (!coherent_) {
     for (int j = 0; j < terms_; ++j) add_exact_term(term_[j], s);
     return;
