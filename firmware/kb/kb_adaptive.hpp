@@ -157,11 +157,13 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // ⌊2^60 / area2⌋: num / area2 in Q.30 as one product per span piece instead of a division;
   // relative error below area2·2^-60. num (an edge function at a pixel centre of the triangle,
   // within [0, area2]) is kept within [−area2, 2·area2] so that |num·recip| < 2^62 whatever
-  // the caller passes.
+  // the caller passes; where that clamp fires it is counted (Counters::saturations, per piece).
   std::int64_t area_recip_ = 0;
   std::int64_t local_of(std::int64_t num) const {
     const std::int64_t area = tri_->area2;
-    num = fx::clamp(num, -area, 2 * area);
+    const std::int64_t kept = fx::clamp(num, -area, 2 * area);
+    if (kept != num) ++counters_->saturations;
+    num = kept;
     return (num * area_recip_ + (std::int64_t{1} << 29)) >> 30;
   }
   // The leaves of the subdivision, and the leaf holding each deepest-level cell.

@@ -97,6 +97,8 @@ struct QuadStep {
 // Bounds: |c| < 2^29 (|g| < 2^25); |u|, |v| <= 1 + 2^-20 at every pixel of a piece, and |du|,
 // |dv| < 1 + 2^-20 when the piece has two pixels or more (both lie in the cell); steps are
 // clamped to ±2 (a one-pixel piece never uses them), so every product below stays under 2^62.
+// The clamp is proven harmless rather than counted: a step beyond ±2 means the cell is narrower
+// than half a pixel along x, so no piece of two pixels lies in it and no pixel reads the step.
 struct SteppedQuadratic {
   LocalQuadratic q;
   std::int64_t du = 0, dv = 0;                  // Q.30

@@ -428,9 +428,12 @@ class PointShader {
   // unclamped diffuse of kb-adaptive's terminators may take it below 0. Kept in [−2040, 2040]
   // levels (|g| < 2^25, the bound kb_quadratic.hpp's products assume); past +2040 the output
   // is saturated either way, and kb-adaptive keeps its terminators above −1785 levels.
-  static std::int32_t level_of(std::int64_t i_q30) {
+  // The clamp is counted (Counters::saturations, once per channel of a sample or point-light
+  // pixel where it fires): a saturation, not a proven range.
+  std::int32_t level_of(std::int64_t i_q30) const {
     constexpr std::int64_t lo = -(std::int64_t{8} << 30), hi = std::int64_t{8} << 30;
     const std::int64_t v = fx::clamp(i_q30, lo, hi);
+    if (v != i_q30) ++ctx_->counters->saturations;
     return static_cast<std::int32_t>(fx::round_shift_right(v * 255, 30 - kFrac));
   }
 

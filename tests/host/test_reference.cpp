@@ -144,7 +144,9 @@ TEST(Coverage, ClosedSphereHasNoCracksAndNoDoubleWrites) {
       EXPECT_LE(front.coverage[p], 1);  // front faces of a convex mesh never overlap
       // Every pixel the mesh covers is covered exactly once from the front and once from the
       // back: no cracks along shared edges, no double writes.
-      if (both.coverage[p]) EXPECT_EQ(both.coverage[p], 2) << i << "," << j;
+      if (both.coverage[p]) {
+        EXPECT_EQ(both.coverage[p], 2) << i << "," << j;
+      }
       EXPECT_EQ(front.coverage[p] == 1, both.coverage[p] == 2);
       const double x = -1.25 + 2.5 * (i + 0.5) / 200, y = 1.25 - 2.5 * (j + 0.5) / 200;
       if (x * x + y * y < 0.8) {
