@@ -119,14 +119,24 @@ void RenderLoop::publish_state() {
   hub_.set_state(msg);
 }
 
+std::optional<RenderLoop::Job> RenderLoop::next_job() {
+  std::lock_guard lk(m_);
+  if (jobs_.empty()) return std::nullopt;
+  Job j = std::move(jobs_.front());
+  jobs_.pop_front();
+  return j;
+}
+
 bool RenderLoop::apply_pending() {
-  std::deque<Job> jobs;
-  {
-    std::lock_guard lk(m_);
-    jobs.swap(jobs_);
-  }
+  // A frame period's worth of commands (at least one), the rest after the next frame: each
+  // setting re-installs the whole scene in the device (tens of ms for a big mesh), so a storm
+  // of 64 queued commands applied at once held every client's frames back for seconds
+  // (docs/SERVER.md, "Soak test").
+  const auto budget_end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(1.0 / opt_.max_fps));
   bool changed = false;
-  for (auto& j : jobs) {
+  for (auto next = next_job(); next; next = Clock::now() < budget_end ? next_job() : std::nullopt) {
+    Job& j = *next;
     const bool ref_before = flags_.reference;
     const Result outcome = apply_control(j.cmd, *src_, flags_, step_);
     {

@@ -67,7 +67,8 @@ class RenderLoop {
     Image device;
   };
   void run();
-  bool apply_pending();  // true if anything changed
+  std::optional<Job> next_job();  // the oldest queued command, if any
+  bool apply_pending();           // true if anything changed
   void render_and_publish(double rotation);
   void publish_state();
   void offer_reference();

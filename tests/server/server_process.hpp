@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -30,13 +31,19 @@ using namespace std::chrono_literals;
 
 class ServerProcess {
  public:
-  explicit ServerProcess(std::vector<std::string> args) {
+  // stderr_path, when given, receives the server's stderr (a soak's thousands of expected
+  // "websocket read: End of file" lines would otherwise flood the test's output).
+  explicit ServerProcess(std::vector<std::string> args, const std::string& stderr_path = "") {
     int fds[2];
     if (pipe(fds) != 0) throw std::runtime_error("pipe");
     pid_ = fork();
     if (pid_ == 0) {
       dup2(fds[1], 1);
       close(fds[0]);
+      if (!stderr_path.empty()) {
+        const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (err >= 0) dup2(err, 2);
+      }
       // Under ASan, freed blocks sit in a 256 MiB quarantine, which would read as RSS growth
       // in the memory bound; keep it small (the option is ignored by non-ASan builds).
       std::string asan = getenv("ASAN_OPTIONS") ? getenv("ASAN_OPTIONS") : "";
@@ -78,6 +85,23 @@ class ServerProcess {
       if (k == "VmRSS:") f >> v;
     return v;
   }
+  // Open file descriptors, from /proc (Linux); -1 once the process is gone.
+  int fd_count() const {
+    std::error_code ec;
+    int n = 0;
+    for (std::filesystem::directory_iterator it("/proc/" + std::to_string(pid_) + "/fd", ec), end;
+         !ec && it != end; it.increment(ec))
+      ++n;
+    return ec ? -1 : n;
+  }
+  // False once the process has ended (it is then reaped; exit_status() says how).
+  bool running() {
+    if (pid_ <= 0) return false;
+    if (waitpid(pid_, &exit_status_, WNOHANG) != pid_) return true;
+    pid_ = -1;
+    return false;
+  }
+  int exit_status() const { return exit_status_; }
   // Sends sig and waits up to `limit`; returns the exit status or -1 on timeout.
   int signal_and_wait(int sig, std::chrono::milliseconds limit, std::chrono::milliseconds& took) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -97,6 +121,7 @@ class ServerProcess {
 
  private:
   pid_t pid_ = -1;
+  int exit_status_ = 0;
   int out_ = -1;
   unsigned short port_ = 0;
 };
@@ -109,18 +134,32 @@ struct Message {
 
 class WsClient {
  public:
-  // Throws on a failed handshake (e.g. 403). rcvbuf > 0 shrinks the socket's receive buffer.
-  WsClient(unsigned short port, std::string origin = "", std::string host = "", int rcvbuf = 0)
-      : ws_(ioc_) {
+  // Throws on a failed handshake (e.g. 403) and when connect + handshake take longer than
+  // timeout. rcvbuf > 0 shrinks the socket's receive buffer.
+  WsClient(unsigned short port, std::string origin = "", std::string host = "", int rcvbuf = 0,
+           std::chrono::milliseconds timeout = 10s)
+      : ws_(ioc_), host_(host.empty() ? "127.0.0.1:" + std::to_string(port) : std::move(host)) {
     auto& sock = beast::get_lowest_layer(ws_);
     sock.open(tcp::v4());
     if (rcvbuf > 0) sock.set_option(net::socket_base::receive_buffer_size(rcvbuf));
-    sock.connect({net::ip::make_address("127.0.0.1"), port});
     ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& r) {
       if (!origin.empty()) r.set(http::field::origin, origin);
     }));
     ws_.read_message_max(64 << 20);
-    ws_.handshake(host.empty() ? "127.0.0.1:" + std::to_string(port) : host, "/ws");
+    bool done = false;
+    beast::error_code ec;
+    sock.async_connect({net::ip::make_address("127.0.0.1"), port}, [&](beast::error_code e) {
+      if (e) {
+        ec = e;
+        done = true;
+        return;
+      }
+      ws_.async_handshake(host_, "/ws", [&](beast::error_code h) {
+        ec = h;
+        done = true;
+      });
+    });
+    finish(done, ec, timeout, "websocket handshake");
   }
   // A read that times out stays pending (the stream stays usable); the next call resumes it.
   Message read(std::chrono::milliseconds timeout = 10s) {
@@ -147,9 +186,28 @@ class WsClient {
     m.data = beast::buffers_to_string(buf_.data());
     return m;
   }
-  void send(const std::string& text) {
+  // Throws on an error and when the write takes longer than timeout.
+  void send(const std::string& text, std::chrono::milliseconds timeout = 10s) {
     ws_.text(true);
-    ws_.write(net::buffer(text));
+    write(text, timeout);
+  }
+  void send_binary(const std::string& bytes, std::chrono::milliseconds timeout = 10s) {
+    ws_.binary(true);
+    write(bytes, timeout);
+  }
+  // Sends a close frame and waits up to timeout for the server's; false if it did not come.
+  bool close(std::chrono::milliseconds timeout = 5s) {
+    bool done = false;
+    beast::error_code ec;
+    ws_.async_close(websocket::close_code::normal, [&](beast::error_code e) {
+      ec = e;
+      done = true;
+    });
+    if (!run_until(done, timeout)) {
+      abandon(done);
+      return false;
+    }
+    return !ec;
   }
   void send_json(const nlohmann::json& j) { send(j.dump()); }
   // Reads until a text message of the given type (acking frames on the way, if asked).
@@ -180,8 +238,44 @@ class WsClient {
   websocket::stream<tcp::socket>& ws() { return ws_; }
 
  private:
+  // Runs handlers until done is set or the time is up; an operation still pending then (e.g. a
+  // timed-out read) keeps its state for the next call.
+  bool run_until(const bool& done, std::chrono::milliseconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (!done && std::chrono::steady_clock::now() < end) {
+      if (ioc_.stopped()) ioc_.restart();
+      ioc_.run_one_until(end);
+    }
+    return done;
+  }
+  // An operation that timed out refers to its caller's locals: close the socket so that it
+  // completes (operation_aborted) before those go away.
+  void abandon(const bool& done) {
+    beast::error_code ignored;
+    beast::get_lowest_layer(ws_).close(ignored);
+    run_until(done, 5s);
+  }
+  void write(const std::string& data, std::chrono::milliseconds timeout) {
+    bool done = false;
+    beast::error_code ec;
+    ws_.async_write(net::buffer(data), [&](beast::error_code e, std::size_t) {
+      ec = e;
+      done = true;
+    });
+    finish(done, ec, timeout, "websocket write");
+  }
+  void finish(const bool& done, const beast::error_code& ec, std::chrono::milliseconds timeout,
+              const char* what) {
+    if (!run_until(done, timeout)) {
+      abandon(done);
+      throw boost::system::system_error(net::error::timed_out, what);
+    }
+    if (ec) throw boost::system::system_error(ec, what);
+  }
+
   net::io_context ioc_;
   websocket::stream<tcp::socket> ws_;
+  std::string host_;  // the handshake's Host, alive until the handshake completes
   beast::flat_buffer buf_;
   beast::error_code ec_;
   bool pending_ = false, done_ = false;
