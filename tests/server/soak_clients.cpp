@@ -467,7 +467,8 @@ void Observer::read_until_stopped() {
       std::lock_guard lk(m_);
       const std::uint32_t published =
           j.contains("frame") ? j["frame"].value("id", std::uint32_t{0}) : 0;
-      stats_.push_back({now, j.value("fps", 0.0), j.value("clients", -1L), published});
+      stats_.push_back({now, j.value("fps", 0.0), j.value("clients", -1L), published,
+                        j.value("frames_rendered", std::uint64_t{0}), j.value("render_ms", 0.0)});
     }
   }
 }

@@ -77,7 +77,9 @@ struct StatsSample {
   Clock::time_point at;
   double fps;
   long clients;
-  std::uint32_t published_id;  // the last device frame the server had published
+  std::uint32_t published_id;     // the last device frame the server had published
+  std::uint64_t frames_rendered;  // the render loop's count of frames rendered
+  double render_ms;               // the last frame's render time
 };
 
 // The steady client: connected for the whole run, acks every frame like the page, records
