@@ -437,17 +437,14 @@ Error Device::draw(const DrawCmd& cmd) {
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
-  // Validate every transform before touching memory (a failing draw changes nothing), then
-  // fill the vertex cache.
+  // Transform every vertex once, into the vertex cache, before any triangle is drawn: a vertex
+  // whose transform leaves the fixed-point range fails the draw with nothing drawn. (The cache is
+  // the draw's scratch, rebuilt by every draw: what a failing draw leaves in it is never read.)
   const Vertex* verts = region<Vertex>(state_.off_vertices);
   ClipVertex* cache = region<ClipVertex>(state_.off_cache);
-  for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
-    ClipVertex tmp;
-    if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
-      return fail(Error::kOutOfRange);
-  }
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
-    (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
+    if (!transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]))
+      return fail(Error::kOutOfRange);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) {
     const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
     draw_triangle(tri);
