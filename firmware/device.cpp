@@ -4,7 +4,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <new>
+#include <type_traits>
 
+#include "firmware/kb/kb_adaptive.hpp"
+#include "firmware/kb/kb_methods.hpp"
+#include "firmware/methods.hpp"
 #include "firmware/raster.hpp"
 #include "fixedpoint/cordic.hpp"
 
@@ -52,6 +57,46 @@ bool depth_in_range(std::int64_t z_q30) {
 // depth_word where depth_in_range holds.
 std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
   return static_cast<std::uint32_t>((z_q30 + (std::int64_t{1} << 30)) * 2);
+}
+
+// The methods the device implements: the size of each one's state and how to construct it in
+// the block's method region. The reserved ids of types.hpp have no row (set_method refuses them).
+struct MethodSlot {
+  std::size_t bytes = 0;
+  ShadingMethod* (*construct)(void* where) = nullptr;
+};
+template <class T, auto... kArgs>
+ShadingMethod* construct_at(void* where) {
+  static_assert(alignof(T) <= 8, "the block's regions are 8-byte aligned");
+  static_assert(std::is_trivially_destructible_v<T>,
+                "a method's region is reused without running a destructor");
+  return ::new (where) T(kArgs...);
+}
+template <class T, auto... kArgs>
+constexpr MethodSlot slot_of() {
+  return MethodSlot{sizeof(T), construct_at<T, kArgs...>};
+}
+MethodSlot method_slot(Method m) {
+  switch (m) {
+    case Method::kFlat: return slot_of<FlatMethod>();
+    case Method::kGouraud: return slot_of<GouraudMethod>();
+    case Method::kPhong: return slot_of<PhongMethod>();
+    case Method::kKuijkBlake: return slot_of<kb::KbOneVectorMethod, true>();
+    case Method::kKuijkBlakeNoSkip: return slot_of<kb::KbOneVectorMethod, false>();
+    case Method::kKuijkBlakeDecomposition: return slot_of<kb::KbDecompositionMethod>();
+    case Method::kKuijkBlakeExact: return slot_of<kb::KbExactMethod>();
+    case Method::kKuijkBlakeAdaptive:
+      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kAdaptive>();
+    case Method::kKuijkBlakeAdaptiveNoSkip:
+      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kNoSkip>();
+    case Method::kKuijkBlakeAdaptiveExact:
+      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kExactOnly>();
+    case Method::kDuff:
+    case Method::kBishopWeimer:
+    case Method::kBrown:
+    case Method::kVlasic: break;  // reserved
+  }
+  return MethodSlot{};
 }
 
 }  // namespace
@@ -200,10 +245,15 @@ Device::Device(std::span<std::byte> memory) {
   state_.shading.material.kd = q1_30::one();
   state_.shading.counters = &counters_;
   DeviceState s = state_;
-  if (layout(state_.viewport, state_.capacity, s)) state_ = s;
+  if (layout(state_.viewport, state_.capacity, s)) {
+    state_ = s;
+    construct_method();
+  }
 }
 
-std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
+std::size_t Device::method_bytes(Method m) { return method_slot(m).bytes; }
+
+std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap, Method m) {
   const std::size_t pixels = std::size_t{vp.width} * vp.height;
   std::size_t n = align8(std::size_t{cap.max_vertices} * sizeof(Vertex));
   n += align8(std::size_t{cap.max_vertices} * sizeof(ClipVertex));
@@ -212,13 +262,23 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
   n += align8(pixels * sizeof(std::uint32_t));
   if (vp.write_count) n += align8(pixels);
   n += align8(kMaxDimension * sizeof(Rgb8));
+  n += align8(method_bytes(m));
   return n;
+}
+
+std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
+  std::size_t largest = 0;
+  for (std::uint32_t id = 0; id <= 32; ++id) {
+    const auto m = static_cast<Method>(id);
+    if (method_bytes(m) != 0) largest = std::max(largest, memory_required(vp, cap, m));
+  }
+  return largest;
 }
 
 bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const {
   // Capacities are bounded so that the sizes below cannot wrap a 32-bit size_t either.
   if (cap.max_vertices > (1u << 24) || cap.max_indices > (1u << 26)) return false;
-  if (memory_required(vp, cap) > mem_.size()) return false;
+  if (memory_required(vp, cap, s.method) > mem_.size()) return false;
   const std::size_t pixels = std::size_t{vp.width} * vp.height;
   std::size_t o = 0;
   s.off_vertices = o;
@@ -235,6 +295,8 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
   if (vp.write_count) o += align8(pixels);
   s.off_span = o;
   o += align8(kMaxDimension * sizeof(Rgb8));
+  s.off_method = o;
+  o += align8(method_bytes(s.method));
   s.end = o;
   s.viewport = vp;
   s.capacity = cap;
@@ -250,6 +312,7 @@ Error Device::set_viewport(const ViewportCmd& cmd) {
   if (!layout(cmd, state_.capacity, s)) return fail(Error::kOutOfMemory);
   state_ = s;
   state_.viewport_set = true;
+  construct_method();  // its region may have moved
   clear_regions(Rgb8{0, 0, 0});
   return ok();
 }
@@ -260,6 +323,7 @@ Error Device::set_buffer_capacity(const BufferCapacityCmd& cmd) {
   s.vertex_count = 0;
   s.index_count = 0;
   state_ = s;
+  construct_method();                                     // its region may have moved
   if (state_.viewport_set) clear_regions(Rgb8{0, 0, 0});  // the framebuffer moved
   return ok();
 }
@@ -327,14 +391,22 @@ Error Device::set_light(const LightCmd& cmd) {
 
 Error Device::set_method(Method m) {
   // Only implemented methods; the reserved ids of types.hpp are refused until they exist.
-  if (m != Method::kFlat && m != Method::kGouraud && m != Method::kPhong &&
-      m != Method::kKuijkBlake && m != Method::kKuijkBlakeNoSkip &&
-      m != Method::kKuijkBlakeDecomposition && m != Method::kKuijkBlakeExact &&
-      m != Method::kKuijkBlakeAdaptive && m != Method::kKuijkBlakeAdaptiveNoSkip &&
-      m != Method::kKuijkBlakeAdaptiveExact)
-    return fail(Error::kUnknownMethod);
-  state_.method = m;
+  if (method_bytes(m) == 0) return fail(Error::kUnknownMethod);
+  if (m == state_.method && method_ != nullptr) return ok();
+  DeviceState s = state_;
+  s.method = m;
+  if (!layout(s.viewport, s.capacity, s)) return fail(Error::kOutOfMemory);
+  state_ = s;
+  construct_method();
   return ok();
+}
+
+// A fresh object of the state's method in its region: the region is zeroed first, so that no
+// byte of an earlier method (or of the caller's block) can reach the new one.
+void Device::construct_method() {
+  std::byte* where = mem_.data() + state_.off_method;
+  std::memset(where, 0, state_.end - state_.off_method);
+  method_ = method_slot(state_.method).construct(where);
 }
 
 Error Device::set_culling(bool on) {
@@ -414,21 +486,6 @@ Error Device::end_frame() {
   return ok();
 }
 
-ShadingMethod& Device::method() {
-  switch (state_.method) {
-    case Method::kFlat: return flat_;
-    case Method::kPhong: return phong_;
-    case Method::kKuijkBlake: return kb_one_vector_;
-    case Method::kKuijkBlakeNoSkip: return kb_no_skip_;
-    case Method::kKuijkBlakeDecomposition: return kb_decomposition_;
-    case Method::kKuijkBlakeExact: return kb_exact_;
-    case Method::kKuijkBlakeAdaptive: return kb_adaptive_;
-    case Method::kKuijkBlakeAdaptiveNoSkip: return kb_adaptive_no_skip_;
-    case Method::kKuijkBlakeAdaptiveExact: return kb_adaptive_exact_;
-    default: return gouraud_;
-  }
-}
-
 Error Device::draw(const DrawCmd& cmd) {
   if (!state_.viewport_set) return fail(Error::kNoViewport);
   if (cmd.count % 3 != 0) return fail(Error::kBadArgument);
@@ -437,14 +494,17 @@ Error Device::draw(const DrawCmd& cmd) {
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
-  // Transform every vertex once, into the vertex cache, before any triangle is drawn: a vertex
-  // whose transform leaves the fixed-point range fails the draw with nothing drawn. (The cache is
-  // the draw's scratch, rebuilt by every draw: what a failing draw leaves in it is never read.)
+  // Validate every transform before touching memory (a failing draw changes nothing), then
+  // fill the vertex cache.
   const Vertex* verts = region<Vertex>(state_.off_vertices);
   ClipVertex* cache = region<ClipVertex>(state_.off_cache);
-  for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
-    if (!transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]))
+  for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
+    ClipVertex tmp;
+    if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
       return fail(Error::kOutOfRange);
+  }
+  for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
+    (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) {
     const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
     draw_triangle(tri);

@@ -13,7 +13,14 @@
 //   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
 //   counts     width x height x uint8         (only if ViewportCmd::write_count)
 //   span       kMaxDimension x Rgb8           (a method's output for one span)
-// memory_required() gives the size for a configuration.
+//   method     method_bytes(method)           (the active method's state: constructed there by
+//                                              set_method and by every layout change)
+// memory_required() gives the size for a configuration: for one method, or enough for every
+// method. The Device object itself holds only the state, the counters and a pointer to the
+// method (static_assert below: at most 4 KiB).
+//
+// Why the method is last: its size depends on the method (from a few dozen bytes for Gouraud
+// to tens of KiB for the Kuijk-Blake tables), and a method change must not move the buffers.
 //
 // Depth buffer: 32-bit. NDC z in [-1, 1] maps to [0, 2^32 - 1]; 16 bits would leave a
 // perspective camera with far/near = 1000 less than one depth step per 1/1000 of the depth
@@ -27,10 +34,7 @@
 
 #include "firmware/counters.hpp"
 #include "firmware/geometry.hpp"
-#include "firmware/kb/kb_adaptive.hpp"
-#include "firmware/kb/kb_methods.hpp"
 #include "firmware/method.hpp"
-#include "firmware/methods.hpp"
 #include "firmware/types.hpp"
 
 namespace tp::fw {
@@ -55,7 +59,7 @@ struct DeviceState {
   std::uint32_t index_count = 0;
   // Region offsets into the memory block (see the layout above).
   std::size_t off_vertices = 0, off_cache = 0, off_indices = 0, off_colour = 0, off_depth = 0,
-              off_counts = 0, off_span = 0, end = 0;
+              off_counts = 0, off_span = 0, off_method = 0, end = 0;
 };
 
 struct FramebufferView {
@@ -95,7 +99,12 @@ class Device {
   Device(const Device&) = delete;
   Device& operator=(const Device&) = delete;
 
+  // The block size for a configuration and method; without a method, enough for any method
+  // (what a host that lets its user switch methods allocates).
+  static std::size_t memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap, Method m);
   static std::size_t memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap);
+  // The bytes of a method's state in the block; 0 for an id that no method implements.
+  static std::size_t method_bytes(Method m);
 
   // Typed commands.
   Error set_viewport(const ViewportCmd& cmd);
@@ -134,7 +143,8 @@ class Device {
   Error ok() { return last_error_ = Error::kOk; }
   bool layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const;
   void clear_regions(Rgb8 colour);
-  ShadingMethod& method();
+  ShadingMethod& method() { return *method_; }
+  void construct_method();
   template <class T>
   T* region(std::size_t off) const {
     return reinterpret_cast<T*>(mem_.data() + off);
@@ -150,16 +160,11 @@ class Device {
   Counters counters_;
   Error last_error_ = Error::kOk;
   std::size_t consumed_ = 0;
-  FlatMethod flat_;
-  GouraudMethod gouraud_;
-  PhongMethod phong_;
-  kb::KbOneVectorMethod kb_one_vector_{true};
-  kb::KbOneVectorMethod kb_no_skip_{false};
-  kb::KbDecompositionMethod kb_decomposition_;
-  kb::KbExactMethod kb_exact_;
-  kb::KbAdaptiveMethod kb_adaptive_{kb::AdaptiveMode::kAdaptive};
-  kb::KbAdaptiveMethod kb_adaptive_no_skip_{kb::AdaptiveMode::kNoSkip};
-  kb::KbAdaptiveMethod kb_adaptive_exact_{kb::AdaptiveMode::kExactOnly};
+  ShadingMethod* method_ = nullptr;  // in the block's method region; set while viewport_set
 };
+
+// Everything that grows with the resolution, the buffers or the method is in the caller's block;
+// the object itself must fit a small part's RAM beside it (docs/TARGET.md, "Memory").
+static_assert(sizeof(Device) <= 4096);
 
 }  // namespace tp::fw

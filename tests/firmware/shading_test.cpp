@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "firmware/lighting.hpp"
 #include "helpers.hpp"
 
 namespace tp::fw::test {
