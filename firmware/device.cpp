@@ -310,6 +310,7 @@ Error Device::set_viewport(const ViewportCmd& cmd) {
     return fail(Error::kBadArgument);
   DeviceState s = state_;
   if (!layout(cmd, state_.capacity, s)) return fail(Error::kOutOfMemory);
+  release_method();
   state_ = s;
   state_.viewport_set = true;
   construct_method();  // its region may have moved
@@ -322,6 +323,7 @@ Error Device::set_buffer_capacity(const BufferCapacityCmd& cmd) {
   if (!layout(state_.viewport, cmd, s)) return fail(Error::kOutOfMemory);
   s.vertex_count = 0;
   s.index_count = 0;
+  release_method();
   state_ = s;
   construct_method();                                     // its region may have moved
   if (state_.viewport_set) clear_regions(Rgb8{0, 0, 0});  // the framebuffer moved
@@ -396,9 +398,19 @@ Error Device::set_method(Method m) {
   DeviceState s = state_;
   s.method = m;
   if (!layout(s.viewport, s.capacity, s)) return fail(Error::kOutOfMemory);
+  release_method();
   state_ = s;
   construct_method();
   return ok();
+}
+
+// Zeroes the active method's region before the layout or the method changes: the object holds
+// pointers to this device's state, which must not outlive it in bytes that the next layout
+// gives to a buffer (the block stays a function of the commands alone).
+void Device::release_method() {
+  if (method_ == nullptr) return;
+  std::memset(mem_.data() + state_.off_method, 0, state_.end - state_.off_method);
+  method_ = nullptr;
 }
 
 // A fresh object of the state's method in its region: the region is zeroed first, so that no

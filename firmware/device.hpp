@@ -145,6 +145,7 @@ class Device {
   void clear_regions(Rgb8 colour);
   ShadingMethod& method() { return *method_; }
   void construct_method();
+  void release_method();
   template <class T>
   T* region(std::size_t off) const {
     return reinterpret_cast<T*>(mem_.data() + off);
