@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command and a
 # refused value each give a message naming the file (and the word offset and the device's
-# error for the stream errors) and a non-zero exit; a good stream replays and hashes.
+# error for the stream errors) and a non-zero exit, as does a stream asking for more than
+# replay's memory limit; a good stream replays and hashes.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -44,6 +45,10 @@ expect truncated "$work/cut.tpcmd" "cut.tpcmd: command draw at word $(( words - 
 cp "$work/good.tpcmd" "$work/wide.tpcmd"
 printf '\x88\x13\x00\x00' | dd of="$work/wide.tpcmd" bs=1 seek=4 conv=notrunc status=none
 expect refused-value "$work/wide.tpcmd" "wide.tpcmd: command set_viewport at word 0 failed: viewport too large"
+
+# Three words asking for 2^24 vertices and 2^26 indices: refused before anything is allocated.
+printf '\x02\x00\x02\x00\x00\x00\x00\x01\x00\x00\x00\x04' > "$work/huge.tpcmd"
+expect huge-capacity "$work/huge.tpcmd" "huge.tpcmd: the stream's viewport and buffer capacity need [0-9]+ bytes of device memory, more than replay's limit"
 
 [ $fail -eq 0 ] && echo "replay CLI errors: all as expected"
 exit $fail
