@@ -6,6 +6,7 @@
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
 //   tinyphong record scenes/teapot.json --method kb -o teapot.tpcmd [--size WxH]
+//   tinyphong record scenes/*.json --method kb --dir streams/ [--size WxH]
 //   tinyphong replay teapot.tpcmd [-o out.png] [--hash]   (several files with --hash)
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
@@ -194,7 +195,7 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
 }
 
 // The command words the driver sends for one frame of the scene, as a .tpcmd file.
-int run_record(const SceneOptions& o, const std::string& out) {
+void record_one(const SceneOptions& o, const std::string& out) {
   const Scene scene = load(o);
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
@@ -203,6 +204,29 @@ int run_record(const SceneOptions& o, const std::string& out) {
   write_command_file(out, words);
   std::cout << "recorded " << scene.name << " (" << scene.width << "x" << scene.height << ", "
             << scene.method << "): " << words.size() << " words -> " << out << "\n";
+}
+
+struct RecordCli {
+  SceneOptions options;  // options.scene unused: the scenes are below
+  std::vector<std::string> scenes;
+  std::string out, dir;
+};
+
+// One scene to -o FILE, or several (one process: the build records 240 streams) into --dir
+// as DIR/<scene file's stem>.tpcmd.
+int run_record(const RecordCli& cli) {
+  if (cli.out.empty() == cli.dir.empty() || (!cli.out.empty() && cli.scenes.size() != 1)) {
+    std::cerr << "tinyphong record: give either -o FILE (one scene) or --dir DIR\n";
+    return 2;
+  }
+  for (const std::string& scene : cli.scenes) {
+    SceneOptions o = cli.options;
+    o.scene = scene;
+    record_one(o, cli.out.empty() ? (std::filesystem::path(cli.dir) /
+                                     (std::filesystem::path(scene).stem().string() + ".tpcmd"))
+                                        .string()
+                                  : cli.out);
+  }
   return 0;
 }
 
@@ -371,13 +395,19 @@ int main(int argc, char** argv) {
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
-  SceneOptions rec_opts;
-  std::string rec_out;
+  RecordCli rec;
   auto* record = app.add_subcommand(
       "record", "write the device command words of one frame of a scene (.tpcmd, docs/TARGET.md)");
-  add_scene_options(record, rec_opts);
-  record->add_option("--method,-m", rec_opts.method, "shading method (see `tinyphong methods`)");
-  record->add_option("-o,--output", rec_out, ".tpcmd file to write")->required();
+  record->add_option("scenes", rec.scenes, "scene file(s) (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  record->add_option("--size", rec.options.size, "override the resolution, WIDTHxHEIGHT");
+  record->add_option("--rotate", rec.options.rotate_deg,
+                     "rotate the objects about the world y axis (degrees)");
+  record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
+  record->add_option("-o,--output", rec.out, ".tpcmd file to write (one scene)");
+  record->add_option("--dir", rec.dir, "write DIR/<scene>.tpcmd for each scene")
+      ->check(CLI::ExistingDirectory);
 
   std::vector<std::string> rep_in;
   std::string rep_out;
@@ -398,7 +428,7 @@ int main(int argc, char** argv) {
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
     if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
     if (app.got_subcommand("stress")) return run_stress(stress_cli);
-    if (*record) return run_record(rec_opts, rec_out);
+    if (*record) return run_record(rec);
     if (*replay) return run_replay(rep_in, rep_out, rep_hash);
     if (*methods) {
       for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
