@@ -38,8 +38,6 @@ Mat4 identity() {
 
 std::size_t bytes_per_pixel(PixelFormat f) { return f == PixelFormat::kRgb565 ? 2 : 3; }
 
-constexpr std::uint32_t kDepthFar = 0xffffffffu;
-
 // NDC z (Q.30, clamped to [-2, 2]) -> depth word: [-1, 1] -> [0, 2^32 - 1], saturating.
 std::uint32_t depth_word(std::int64_t z_q30) {
   const std::int64_t d = (z_q30 + (std::int64_t{1} << 30)) * 2;
@@ -60,39 +58,56 @@ std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
 
 // The span target of a draw: asks the method for the span's colours, then depth-tests and
 // writes them. Depth is interpolated linearly in screen space (NDC z is screen-affine).
+//
+// Everything that is fixed for the triangle — the regions' addresses, the pixel format, the
+// depth test, the write counts — is resolved once, in the constructor, into base pointers and
+// the two pixel loops (with and without depth saturation) for this state; the counters are
+// summed in members and added to the device's once, by flush_counters(). Per span there is then
+// the method's call, the depth plane at the span's start, and one call of the chosen loop.
 class PixelWriter final : public SpanTarget {
  public:
   PixelWriter(Device& d, const Triangle& t, ShadingMethod& m) : dev_(d), tri_(t), method_(m) {
+    const DeviceState& st = d.state_;
     zplane_.setup(t, t.v[0].z, t.v[1].z, t.v[2].z);
+    dz_ = zplane_.step_x();
+    width_ = st.viewport.width;
+    bytes_per_pixel_ = bytes_per_pixel(st.viewport.format);
+    colours_ = d.region<Rgb8>(st.off_span);
+    depth_ = d.region<std::uint32_t>(st.off_depth);
+    colour_ = d.region<std::uint8_t>(st.off_colour);
+    counts_ = st.viewport.write_count ? d.region<std::uint8_t>(st.off_counts) : nullptr;
+    const int variant = (st.viewport.format == PixelFormat::kRgb565 ? 4 : 0) |
+                        (st.depth_test ? 2 : 0) | (counts_ != nullptr ? 1 : 0);
+    write_exact_ = kLoops[1][variant];
+    write_saturating_ = kLoops[0][variant];
   }
   void span(const Span& s) override {
-    Counters& c = dev_.counters_;
-    const DeviceState& st = dev_.state_;
-    Rgb8* colours = dev_.region<Rgb8>(st.off_span);
-    method_.shade_span(s, colours);
-    ++c.spans;
-    c.pixels_shaded += static_cast<std::uint64_t>(s.x1 - s.x0);
-    const std::size_t w = st.viewport.width;
-    const std::size_t row = static_cast<std::size_t>(s.y) * w;
-    std::uint32_t* depth = dev_.region<std::uint32_t>(st.off_depth) + row;
-    std::uint8_t* counts =
-        st.viewport.write_count ? dev_.region<std::uint8_t>(st.off_counts) + row : nullptr;
-    std::uint8_t* colour_row =
-        dev_.region<std::uint8_t>(st.off_colour) + row * bytes_per_pixel(st.viewport.format);
+    method_.shade_span(s, colours_);
+    const std::int32_t n = s.x1 - s.x0;
+    ++spans_;
+    pixels_shaded_ += static_cast<std::uint64_t>(n);
+    const std::size_t row = static_cast<std::size_t>(s.y) * width_;
     const Lambdas lam = lambdas_at(tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
-    const Run run{
-        colours,          depth, colour_row, counts, zplane_.at(lam) << ScreenPlane::kStepFrac,
-        zplane_.step_x(), s.x0,  s.x1};
-    // The format, the depth test and the write counts are fixed for the draw: one loop for each
-    // combination, chosen here, so that the pixel loop branches on none of them. The depth is
-    // linear along the span: when both ends' depth words need no saturation, none does.
-    const bool rgb565 = st.viewport.format == PixelFormat::kRgb565;
-    const bool exact_depth =
-        depth_in_range(run.z >> ScreenPlane::kStepFrac) &&
-        depth_in_range((run.z + run.dz * (s.x1 - s.x0 - 1)) >> ScreenPlane::kStepFrac);
-    const int variant = (rgb565 ? 4 : 0) | (st.depth_test ? 2 : 0) | (counts != nullptr ? 1 : 0);
-    c.pixels_written +=
-        exact_depth ? write_variant<true>(variant, run) : write_variant<false>(variant, run);
+    const std::int64_t z = zplane_.at(lam) << ScreenPlane::kStepFrac;
+    const Run run{colours_,
+                  depth_ + row,
+                  colour_ + row * bytes_per_pixel_,
+                  counts_ != nullptr ? counts_ + row : nullptr,
+                  z,
+                  dz_,
+                  s.x0,
+                  s.x1};
+    // The depth is linear along the span: when both ends' depth words need no saturation, none
+    // does.
+    const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
+                             depth_in_range((z + dz_ * (n - 1)) >> ScreenPlane::kStepFrac);
+    pixels_written_ += exact_depth ? write_exact_(run) : write_saturating_(run);
+  }
+  void flush_counters() const {
+    Counters& c = dev_.counters_;
+    c.spans += spans_;
+    c.pixels_shaded += pixels_shaded_;
+    c.pixels_written += pixels_written_;
   }
 
  private:
@@ -105,19 +120,7 @@ class PixelWriter final : public SpanTarget {
     std::int64_t z, dz;  // depth plane, ScreenPlane::kStepFrac more fraction bits
     std::int32_t x0, x1;
   };
-  template <bool kExactDepth>
-  static std::uint64_t write_variant(int variant, const Run& run) {
-    switch (variant) {
-      case 0: return write<false, false, false, kExactDepth>(run);
-      case 1: return write<false, false, true, kExactDepth>(run);
-      case 2: return write<false, true, false, kExactDepth>(run);
-      case 3: return write<false, true, true, kExactDepth>(run);
-      case 4: return write<true, false, false, kExactDepth>(run);
-      case 5: return write<true, false, true, kExactDepth>(run);
-      case 6: return write<true, true, false, kExactDepth>(run);
-      default: return write<true, true, true, kExactDepth>(run);
-    }
-  }
+  using Loop = std::uint64_t (*)(const Run&);
   // Depth-tests and writes the span; returns the pixels written. kExactDepth: every pixel's depth
   // word is inside (0, kDepthFar), so depth_word's saturation is left out.
   template <bool kRgb565, bool kDepthTest, bool kCounts, bool kExactDepth>
@@ -159,11 +162,30 @@ class PixelWriter final : public SpanTarget {
     }
     return static_cast<std::uint64_t>(x1 - r.x0) - rejected;
   }
+  // The pixel loops, [exact depth][RGB565 · 4 + depth test · 2 + write counts]: one for each
+  // combination, so that the pixel loop branches on none of them.
+  static constexpr Loop kLoops[2][8] = {
+      {write<false, false, false, false>, write<false, false, true, false>,
+       write<false, true, false, false>, write<false, true, true, false>,
+       write<true, false, false, false>, write<true, false, true, false>,
+       write<true, true, false, false>, write<true, true, true, false>},
+      {write<false, false, false, true>, write<false, false, true, true>,
+       write<false, true, false, true>, write<false, true, true, true>,
+       write<true, false, false, true>, write<true, false, true, true>,
+       write<true, true, false, true>, write<true, true, true, true>}};
 
   Device& dev_;
   const Triangle& tri_;
   ShadingMethod& method_;
   ScreenPlane zplane_;
+  std::int64_t dz_ = 0;
+  std::size_t width_ = 0, bytes_per_pixel_ = 3;
+  Rgb8* colours_ = nullptr;  // the method's span buffer
+  std::uint32_t* depth_ = nullptr;
+  std::uint8_t* colour_ = nullptr;
+  std::uint8_t* counts_ = nullptr;  // null unless the write counts are on
+  Loop write_exact_ = nullptr, write_saturating_ = nullptr;
+  std::uint64_t spans_ = 0, pixels_shaded_ = 0, pixels_written_ = 0;
 };
 
 Device::Device(std::span<std::byte> memory) {
@@ -415,17 +437,14 @@ Error Device::draw(const DrawCmd& cmd) {
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
-  // Validate every transform before touching memory (a failing draw changes nothing), then
-  // fill the vertex cache.
+  // Transform every vertex once, into the vertex cache, before any triangle is drawn: a vertex
+  // whose transform leaves the fixed-point range fails the draw with nothing drawn. (The cache is
+  // the draw's scratch, rebuilt by every draw: what a failing draw leaves in it is never read.)
   const Vertex* verts = region<Vertex>(state_.off_vertices);
   ClipVertex* cache = region<ClipVertex>(state_.off_cache);
-  for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
-    ClipVertex tmp;
-    if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
-      return fail(Error::kOutOfRange);
-  }
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
-    (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
+    if (!transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]))
+      return fail(Error::kOutOfRange);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) {
     const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
     draw_triangle(tri);
@@ -499,6 +518,7 @@ void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const
   (void)rasterize(t, static_cast<std::int32_t>(state_.viewport.width),
                   static_cast<std::int32_t>(state_.viewport.height), writer,
                   m.reads_edge_positions() ? EdgeParameters::kWith : EdgeParameters::kWithout);
+  writer.flush_counters();
 }
 
 FramebufferView Device::framebuffer() const {

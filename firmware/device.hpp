@@ -37,6 +37,10 @@ namespace tp::fw {
 
 // Everything a command can change, apart from the memory block and the counters.
 // Trivially copyable: tests byte-compare it across failing commands.
+// The depth word clear() stores: the far plane, which no write can store (a pixel is written
+// only with a depth word below the stored one, when the depth test is on).
+inline constexpr std::uint32_t kDepthFar = 0xffffffffu;
+
 struct DeviceState {
   bool viewport_set = false;
   ViewportCmd viewport;

@@ -43,12 +43,6 @@ Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) 
   return out;
 }
 
-std::uint8_t to_level(std::int64_t i_q30) {
-  constexpr std::int64_t one = std::int64_t{1} << 30;
-  const std::int64_t v = fx::clamp(i_q30, 0, one);
-  return static_cast<std::uint8_t>((v * 255 + (one >> 1)) >> 30);
-}
-
 Rgb8 to_rgb8(const Radiance& r) {
   return Rgb8{to_level(r.c[0]), to_level(r.c[1]), to_level(r.c[2])};
 }

@@ -68,8 +68,16 @@ inline q1_30 power(q1_30 x, std::uint32_t n) {
 // Lighting at eye-space point p with unit normal n.
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n);
 
+// round(255 I) (ties away from zero) of an I already in [0, 1]: what the span loops take where
+// their range is known.
+inline std::uint8_t to_level_in_range(std::int64_t i_q30) {
+  return static_cast<std::uint8_t>((i_q30 * 255 + (std::int64_t{1} << 29)) >> 30);
+}
 // Clamp to [0, 1], then round(255 I) (ties away from zero).
-std::uint8_t to_level(std::int64_t i_q30);
+inline std::uint8_t to_level(std::int64_t i_q30) {
+  constexpr std::int64_t one = std::int64_t{1} << 30;
+  return to_level_in_range(i_q30 < 0 ? 0 : (i_q30 > one ? one : i_q30));
+}
 Rgb8 to_rgb8(const Radiance& r);
 
 }  // namespace tp::fw

@@ -19,9 +19,28 @@ void GouraudMethod::shade_span(const Span& s, Rgb8* out) {
   constexpr int f = ScreenPlane::kStepFrac;
   std::int64_t r = plane_[0].at(lam) << f, g = plane_[1].at(lam) << f, b = plane_[2].at(lam) << f;
   const std::int64_t dr = plane_[0].step_x(), dg = plane_[1].step_x(), db = plane_[2].step_x();
-  for (std::int32_t x = s.x0; x < s.x1; ++x) {
-    *out++ = Rgb8{to_level(r >> f), to_level(g >> f), to_level(b >> f)};
-    r += dr;  // Gouraud: one addition per channel per pixel
+  const std::int32_t n = s.x1 - s.x0;
+  // The colours are exactly linear along the span (a start plus k steps): inside [0, 1] at both
+  // ends means inside at every pixel, and the pixel loop needs no clamp. (The vertices' colours
+  // are clamped, but the planes' rounding may still step a span's end a few units outside.)
+  const auto in_range = [&](std::int64_t v, std::int64_t dv) {
+    constexpr std::int64_t one = std::int64_t{1} << 30;
+    const std::int64_t first = v >> f, last = (v + dv * (n - 1)) >> f;
+    return first >= 0 && first <= one && last >= 0 && last <= one;
+  };
+  if (in_range(r, dr) && in_range(g, dg) && in_range(b, db)) {
+    for (std::int32_t x = 0; x < n; ++x) {
+      out[x] =
+          Rgb8{to_level_in_range(r >> f), to_level_in_range(g >> f), to_level_in_range(b >> f)};
+      r += dr;  // Gouraud: one addition per channel per pixel
+      g += dg;
+      b += db;
+    }
+    return;
+  }
+  for (std::int32_t x = 0; x < n; ++x) {
+    out[x] = Rgb8{to_level(r >> f), to_level(g >> f), to_level(b >> f)};
+    r += dr;
     g += dg;
     b += db;
   }

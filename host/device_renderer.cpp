@@ -163,7 +163,7 @@ DeviceRenderer::DeviceRenderer(int max_width, int max_height, std::uint32_t max_
                                std::uint32_t max_indices)
     : memory_(fw::Device::memory_required(
           fw::ViewportCmd{static_cast<std::uint32_t>(max_width),
-                          static_cast<std::uint32_t>(max_height), fw::PixelFormat::kRgb888, true},
+                          static_cast<std::uint32_t>(max_height), fw::PixelFormat::kRgb888, false},
           fw::BufferCapacityCmd{max_vertices, max_indices})),
       device_(std::span<std::byte>(memory_)) {}
 
@@ -173,7 +173,7 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
   if (scene.width <= 0 || scene.height <= 0)
     reject(scene, "/resolution", "width and height must be positive");
   p.viewport = {static_cast<std::uint32_t>(scene.width), static_cast<std::uint32_t>(scene.height),
-                fw::PixelFormat::kRgb888, /*write_count=*/true};
+                fw::PixelFormat::kRgb888, /*write_count=*/false};
   p.projection = to_device_matrix(projection_matrix(scene.camera, scene.width, scene.height),
                                   "projection", report);
   p.eye = eye_at_infinity(scene.camera) ? fw::EyeMode::kInfinite : fw::EyeMode::kFinite;
@@ -355,12 +355,14 @@ DeviceFrame read_frame(const fw::Device& device) {
       }
     }
   }
-  // Without a write-count buffer (a replayed stream may not ask for one) nothing is known to be
-  // covered.
-  const std::uint8_t* counts = device.write_counts();
+  // Coverage from the depth buffer: the depth test is on and clear sets every depth word to the
+  // far value, which no write can store (a write needs a depth below the stored one), so a pixel
+  // was written exactly when its depth word is below far. The write counts would say the same at
+  // a cost in every pixel loop, so they stay off (docs/DECISIONS.md, "Pipeline"). (A replayed
+  // stream that turns the depth test off gets this coverage too; only the tests read it.)
+  const std::uint32_t* depth = device.depth_buffer();
   f.covered.assign(pixels, 0);
-  if (counts)
-    for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = counts[i] ? 1 : 0;
+  for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = depth[i] != fw::kDepthFar ? 1 : 0;
   f.counters = counter_snapshot(device.counters());
   return f;
 }

@@ -104,7 +104,7 @@ class DeviceRenderer {
 };
 
 // The device's current framebuffer as a DeviceFrame (RGB565 widened to RGB888; covered from the
-// write counts if the viewport keeps them); render_ms is left 0.
+// depth buffer); render_ms is left 0.
 DeviceFrame read_frame(const fw::Device& device);
 
 // "kOk", "kBadOpcode", ...: the device's error codes by name (for messages).
