@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "host/command_stream.hpp"
 #include "host/to_fixed.hpp"
 
 namespace tp::host {
@@ -239,43 +240,50 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
   return p;
 }
 
-void DeviceRenderer::apply(const Scene& scene, const Prepared& p) {
-  const auto step = [&](fw::Error e, const char* what) {
-    if (e != fw::Error::kOk)
-      reject(scene, "",
-             std::string("the device rejected ") + what + ": " + std::string(error_name(e)));
-  };
-  step(device_.set_viewport(p.viewport), "the viewport");
-  step(device_.set_buffer_capacity(p.capacity), "the buffer sizes");
-  step(device_.set_projection(p.projection), "the projection");
-  step(device_.set_eye(p.eye), "the eye");
-  step(device_.set_material(p.material), "the material");
+std::vector<std::uint32_t> DeviceRenderer::setup_commands(const Scene& scene,
+                                                          const Prepared& p) const {
+  CommandWriter w;
+  w.set_viewport(p.viewport);
+  w.set_buffer_capacity(p.capacity);
+  w.set_projection(p.projection);
+  w.set_eye(p.eye);
+  w.set_material(p.material);
   for (std::uint32_t i = 0; i < fw::kMaxLights; ++i) {
     fw::LightCmd l = i < p.lights.size() ? p.lights[i] : fw::LightCmd{};
     l.index = i;
-    step(device_.set_light(l), "a light");
+    w.set_light(l);
   }
-  step(device_.set_method(p.method), "the shading method");
-  step(device_.set_culling(scene.cull_backfaces), "culling");
-  step(device_.upload_vertices(0, p.vertices), "the vertices");
-  step(device_.upload_indices(0, p.indices), "the indices");
+  w.set_method(p.method);
+  w.set_culling(scene.cull_backfaces);
+  w.upload_vertices(0, p.vertices);
+  w.upload_indices(0, p.indices);
   // Every mesh's model-view must be representable at the rotations the animation uses; the
   // unrotated one is checked here, the device checks the rest per frame.
-  for (const auto& mesh : p.meshes)
-    step(device_.set_modelview(modelview_for(scene, mesh, 0.0)), "a model-view matrix");
+  for (const auto& mesh : p.meshes) w.set_modelview(modelview_for(scene, mesh, 0.0));
+  return w.words();
+}
+
+void DeviceRenderer::apply(const Scene& scene, const std::vector<std::uint32_t>& setup) {
+  try {
+    run_stream(device_, setup);
+  } catch (const StreamError& e) {
+    reject(scene, "", std::string("the device rejected the scene: ") + e.what());
+  }
 }
 
 void DeviceRenderer::set_scene(const Scene& scene) {
   const Prepared p = prepare(scene);
+  std::vector<std::uint32_t> setup = setup_commands(scene, p);
   try {
-    apply(scene, p);
+    apply(scene, setup);
   } catch (const SceneError&) {
     // Put the previous scene back so that the device keeps rendering what it had.
-    if (loaded_) apply(scene_, prepare(scene_));
+    if (loaded_) apply(scene_, setup_words_);
     throw;
   }
   scene_ = scene;
   meshes_ = p.meshes;
+  setup_words_ = std::move(setup);
   loaded_ = true;
 }
 
@@ -288,33 +296,47 @@ fw::Mat4 DeviceRenderer::modelview_for(const Scene& scene, const MeshRange& mesh
   return m;
 }
 
-void DeviceRenderer::check(fw::Error e, const char* what) const {
-  if (e != fw::Error::kOk)
-    throw std::runtime_error(std::string("device: ") + what +
-                             " failed: " + std::string(error_name(e)));
+std::vector<std::uint32_t> DeviceRenderer::frame_commands(double model_rotation_radians) const {
+  CommandWriter w;
+  const glm::dvec3 bg = glm::clamp(scene_.background, 0.0, 1.0) * 255.0;
+  w.clear({static_cast<std::uint8_t>(std::lround(bg.r)),
+           static_cast<std::uint8_t>(std::lround(bg.g)),
+           static_cast<std::uint8_t>(std::lround(bg.b))});
+  for (const auto& mesh : meshes_) {
+    w.set_modelview(modelview_for(scene_, mesh, model_rotation_radians));
+    w.draw({mesh.first_index, mesh.index_count});
+  }
+  w.end_frame();
+  return w.words();
+}
+
+std::vector<std::uint32_t> DeviceRenderer::record(double model_rotation_radians) const {
+  if (!loaded_) throw std::logic_error("DeviceRenderer::record before set_scene");
+  std::vector<std::uint32_t> words = setup_words_;
+  const std::vector<std::uint32_t> frame = frame_commands(model_rotation_radians);
+  words.insert(words.end(), frame.begin(), frame.end());
+  return words;
 }
 
 DeviceFrame DeviceRenderer::render(double model_rotation_radians) {
   if (!loaded_) throw std::logic_error("DeviceRenderer::render before set_scene");
   const auto start = std::chrono::steady_clock::now();
-  const glm::dvec3 bg = glm::clamp(scene_.background, 0.0, 1.0) * 255.0;
-  check(device_.clear({static_cast<std::uint8_t>(std::lround(bg.r)),
-                       static_cast<std::uint8_t>(std::lround(bg.g)),
-                       static_cast<std::uint8_t>(std::lround(bg.b))}),
-        "clear");
-  for (const auto& mesh : meshes_) {
-    check(device_.set_modelview(modelview_for(scene_, mesh, model_rotation_radians)),
-          "set_modelview");
-    check(device_.draw({mesh.first_index, mesh.index_count}), "draw");
+  try {
+    run_stream(device_, frame_commands(model_rotation_radians));
+  } catch (const StreamError& e) {
+    throw std::runtime_error(std::string("device: ") + e.what());
   }
-  check(device_.end_frame(), "end_frame");
   const auto stop = std::chrono::steady_clock::now();
+  DeviceFrame f = read_frame(device_);
+  f.render_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  return f;
+}
 
+DeviceFrame read_frame(const fw::Device& device) {
   DeviceFrame f;
-  const fw::FramebufferView fb = device_.framebuffer();
+  const fw::FramebufferView fb = device.framebuffer();
   f.width = static_cast<int>(fb.width);
   f.height = static_cast<int>(fb.height);
-  f.render_ms = std::chrono::duration<double, std::milli>(stop - start).count();
   const std::size_t pixels = std::size_t{fb.width} * fb.height;
   f.rgb.resize(pixels * 3);
   for (std::uint32_t y = 0; y < fb.height; ++y) {
@@ -336,11 +358,12 @@ DeviceFrame DeviceRenderer::render(double model_rotation_radians) {
   // Coverage from the depth buffer: the depth test is on and clear sets every depth word to the
   // far value, which no write can store (a write needs a depth below the stored one), so a pixel
   // was written exactly when its depth word is below far. The write counts would say the same at
-  // a cost in every pixel loop, so they stay off (docs/DECISIONS.md, "Pipeline").
-  const std::uint32_t* depth = device_.depth_buffer();
+  // a cost in every pixel loop, so they stay off (docs/DECISIONS.md, "Pipeline"). (A replayed
+  // stream that turns the depth test off gets this coverage too; only the tests read it.)
+  const std::uint32_t* depth = device.depth_buffer();
   f.covered.assign(pixels, 0);
   for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = depth[i] != fw::kDepthFar ? 1 : 0;
-  f.counters = counter_snapshot(device_.counters());
+  f.counters = counter_snapshot(device.counters());
   return f;
 }
 

@@ -74,6 +74,12 @@ class DeviceRenderer {
   ReferenceFrame render_reference(double model_rotation_radians = 0.0,
                                   Interpolation interpolation = Interpolation::Phong) const;
 
+  // The command words of one frame as a fresh device needs them: the scene's setup (viewport,
+  // capacity, projection, eye, material, lights, method, culling, uploads) then the frame's
+  // (clear, model-view and draw per mesh, end_frame). set_scene and render run exactly these
+  // words through Device::execute, so a recorded stream cannot drift from a render.
+  std::vector<std::uint32_t> record(double model_rotation_radians = 0.0) const;
+
   const fw::Device& device() const { return device_; }
 
  private:
@@ -84,16 +90,22 @@ class DeviceRenderer {
   // Everything set_scene derives from a scene, converted and validated before the device sees it.
   struct Prepared;
   Prepared prepare(const Scene& scene) const;
-  void apply(const Scene& scene, const Prepared& p);
+  std::vector<std::uint32_t> setup_commands(const Scene& scene, const Prepared& p) const;
+  std::vector<std::uint32_t> frame_commands(double model_rotation_radians) const;
+  void apply(const Scene& scene, const std::vector<std::uint32_t>& setup);
   fw::Mat4 modelview_for(const Scene& scene, const MeshRange& mesh, double rotation) const;
-  void check(fw::Error e, const char* what) const;
 
   std::vector<std::byte> memory_;
   fw::Device device_;
   Scene scene_;
   std::vector<MeshRange> meshes_;
+  std::vector<std::uint32_t> setup_words_;  // the loaded scene's setup commands
   bool loaded_ = false;
 };
+
+// The device's current framebuffer as a DeviceFrame (RGB565 widened to RGB888; covered from the
+// depth buffer); render_ms is left 0.
+DeviceFrame read_frame(const fw::Device& device);
 
 // "kOk", "kBadOpcode", ...: the device's error codes by name (for messages).
 std::string_view error_name(fw::Error e);

@@ -5,6 +5,9 @@
 //   tinyphong reference scenes/teapot.json -o ref.png [--exr ref.exr] [--angular]
 //   tinyphong compare ref.png teapot.png [--diff diff.png] [--row 240]
 //   tinyphong methods
+//   tinyphong record scenes/teapot.json --method kb -o teapot.tpcmd [--size WxH]
+//   tinyphong record scenes/*.json --method kb --dir streams/ [--size WxH]
+//   tinyphong replay teapot.tpcmd [-o out.png] [--hash]   (several files with --hash)
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
@@ -20,6 +23,7 @@
 #include <CLI/CLI.hpp>
 
 #include "firmware/types.hpp"
+#include "host/command_stream.hpp"
 #include "host/device_renderer.hpp"
 #include "host/image_io.hpp"
 #include "host/metrics.hpp"
@@ -190,6 +194,98 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
   return 0;
 }
 
+// The command words the driver sends for one frame of the scene, as a .tpcmd file.
+void record_one(const SceneOptions& o, const std::string& out) {
+  const Scene scene = load(o);
+  const Capacity cap = capacity_for(scene);
+  DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
+  device.set_scene(scene);
+  const std::vector<std::uint32_t> words = device.record(radians(o.rotate_deg));
+  write_command_file(out, words);
+  std::cout << "recorded " << scene.name << " (" << scene.width << "x" << scene.height << ", "
+            << scene.method << "): " << words.size() << " words -> " << out << "\n";
+}
+
+struct RecordCli {
+  SceneOptions options;  // options.scene unused: the scenes are below
+  std::vector<std::string> scenes;
+  std::string out, dir;
+};
+
+// One scene to -o FILE, or several (one process: the build records 240 streams) into --dir
+// as DIR/<scene file's stem>.tpcmd.
+int run_record(const RecordCli& cli) {
+  if (cli.out.empty() == cli.dir.empty() || (!cli.out.empty() && cli.scenes.size() != 1)) {
+    std::cerr << "tinyphong record: give either -o FILE (one scene) or --dir DIR\n";
+    return 2;
+  }
+  for (const std::string& scene : cli.scenes) {
+    SceneOptions o = cli.options;
+    o.scene = scene;
+    record_one(o, cli.out.empty() ? (std::filesystem::path(cli.dir) /
+                                     (std::filesystem::path(scene).stem().string() + ".tpcmd"))
+                                        .string()
+                                  : cli.out);
+  }
+  return 0;
+}
+
+// Runs a .tpcmd file through a fresh device; the PNG and/or the framebuffer hash, printed as
+// "HASH  FILE" (as sha256sum does), so that a test hashes many streams in one run.
+int run_replay_one(const std::string& in, const std::string& out, bool print_hash) {
+  const std::vector<std::uint32_t> words = read_command_file(in);
+  // A dozen words can ask for 2^24 vertices: refuse what no frame of a scene file needs (a
+  // 4096 x 4096 viewport with the largest mesh a scene may hold takes well under this).
+  constexpr std::size_t kMaxReplayMemory = std::size_t{1} << 30;
+  const std::size_t need = memory_for_stream(words);
+  if (need > kMaxReplayMemory) {
+    std::cerr << "tinyphong replay: " << in << ": the stream's viewport and buffer capacity need "
+              << need << " bytes of device memory, more than replay's limit of " << kMaxReplayMemory
+              << "\n";
+    return 1;
+  }
+  std::vector<std::byte> memory(need);
+  tp::fw::Device device{std::span<std::byte>(memory)};
+  try {
+    run_stream(device, words);
+  } catch (const StreamError& e) {
+    std::cerr << "tinyphong replay: " << in << ": " << e.what() << "\n";
+    return 1;
+  }
+  if (!device.state().viewport_set) {
+    std::cerr << "tinyphong replay: " << in << ": the stream sets no viewport: no image\n";
+    return 1;
+  }
+  if (print_hash)
+    std::cout << hash_hex(framebuffer_hash(device.framebuffer())) << "  " << in << "\n";
+  if (!out.empty()) {
+    write_png(out, read_frame(device).image());
+    if (!print_hash) std::cout << "replayed " << words.size() << " words -> " << out << "\n";
+  }
+  return 0;
+}
+
+int run_replay(const std::vector<std::string>& in, const std::string& out, bool print_hash) {
+  if (out.empty() && !print_hash) {
+    std::cerr << "tinyphong replay: nothing to do: give -o FILE.png and/or --hash\n";
+    return 2;
+  }
+  if (in.size() > 1 && !out.empty()) {
+    std::cerr << "tinyphong replay: -o takes one stream, " << in.size() << " given\n";
+    return 2;
+  }
+  int status = 0;
+  for (const std::string& file : in) {
+    try {
+      status = std::max(status, run_replay_one(file, out, print_hash));
+    } catch (const std::runtime_error& e) {  // an unreadable file: report it, go on
+      std::cerr << "tinyphong replay: " << e.what() << "\n";
+      status = 1;
+    }
+  }
+  return status;
+}
+
 struct StressCli {
   stress::Options options;
   std::string json;
@@ -299,6 +395,30 @@ int main(int argc, char** argv) {
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
+  RecordCli rec;
+  auto* record = app.add_subcommand(
+      "record", "write the device command words of one frame of a scene (.tpcmd, docs/TARGET.md)");
+  record->add_option("scenes", rec.scenes, "scene file(s) (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  record->add_option("--size", rec.options.size, "override the resolution, WIDTHxHEIGHT");
+  record->add_option("--rotate", rec.options.rotate_deg,
+                     "rotate the objects about the world y axis (degrees)");
+  record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
+  record->add_option("-o,--output", rec.out, ".tpcmd file to write (one scene)");
+  record->add_option("--dir", rec.dir, "write DIR/<scene>.tpcmd for each scene")
+      ->check(CLI::ExistingDirectory);
+
+  std::vector<std::string> rep_in;
+  std::string rep_out;
+  bool rep_hash = false;
+  auto* replay =
+      app.add_subcommand("replay", "run a .tpcmd command stream through the device (host)");
+  replay->add_option("streams", rep_in, ".tpcmd file(s)")->required()->check(CLI::ExistingFile);
+  replay->add_option("-o,--output", rep_out, "PNG file to write");
+  replay->add_flag("--hash", rep_hash,
+                   "print the FNV-1a 64 hash of the framebuffer (what the Cortex-M images print)");
+
   StressCli stress_cli;
   add_stress(app, stress_cli);
 
@@ -308,6 +428,8 @@ int main(int argc, char** argv) {
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
     if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
     if (app.got_subcommand("stress")) return run_stress(stress_cli);
+    if (*record) return run_record(rec);
+    if (*replay) return run_replay(rep_in, rep_out, rep_hash);
     if (*methods) {
       for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
       return 0;

@@ -23,7 +23,7 @@ fi
 files=("$@")
 if [[ ${#files[@]} -eq 0 ]]; then
   cd "$root"
-  mapfile -t files < <(find bench firmware fixedpoint host server tables tests -type f \
+  mapfile -t files < <(find bench firmware fixedpoint host server tables target tests -type f \
                          \( -name '*.cpp' -o -name '*.hpp' \) -not -path '*/node_modules/*' | sort)
 fi
 

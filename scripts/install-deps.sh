@@ -12,8 +12,10 @@ packages=(
   libboost-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
-  # integer-only proof: the Cortex-M cross build
+  # integer-only proof and the Cortex-M images: the cross toolchain
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib binutils-arm-none-eabi
+  # the Cortex-M images run under QEMU (tests/target, label target)
+  qemu-system-arm
   # browser end-to-end tests
   chromium
   # tooling used by the scripts

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every test, from a fresh Debian 12 machine: dependencies, configure, build, test — the
 # regular (dev) build, the sanitizer (ASan + UBSan) build and the fuzz targets (clang's
-# libFuzzer: the committed corpora, then 60 s of fuzzing per target; docs/FUZZING.md).
-# Options: --fast   only tests labelled "fast" (skips slow sweeps, the browser suite and the
-#                   60 s fuzzing runs; the fuzz corpora still run)
+# libFuzzer: the committed corpora, then 60 s of fuzzing per target; docs/FUZZING.md). The
+# dev build's tests include the Cortex-M images under QEMU (label target; docs/TARGET.md).
+# Options: --fast   only tests labelled "fast" (skips slow sweeps, the browser suite, the
+#                   Cortex-M images and the 60 s fuzzing runs; the fuzz corpora still run)
 #          --preset P  only that preset (dev, sanitize, fuzz or release)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,0 +1,217 @@
+#include "host/command_stream.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "host/device_renderer.hpp"
+#include "target/fnv1a.hpp"
+
+namespace tp::host {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              ".tpcmd files are little-endian words; a big-endian host would need byte swaps");
+
+template <class Q>
+std::uint32_t bits(Q q) {
+  return static_cast<std::uint32_t>(q.raw());  // the raw two's-complement bits
+}
+
+// The payload length is the header's top 16 bits.
+constexpr std::size_t kMaxPayload = 0xffff;
+constexpr std::size_t kVerticesPerCommand = (kMaxPayload - 2) / 6;
+constexpr std::size_t kIndicesPerCommand = kMaxPayload - 2;
+
+std::string payload_name(std::uint32_t opcode) {
+  switch (static_cast<fw::Opcode>(opcode)) {
+    case fw::Opcode::kSetViewport: return "set_viewport";
+    case fw::Opcode::kSetBufferCapacity: return "set_buffer_capacity";
+    case fw::Opcode::kSetModelView: return "set_modelview";
+    case fw::Opcode::kSetProjection: return "set_projection";
+    case fw::Opcode::kSetEye: return "set_eye";
+    case fw::Opcode::kSetMaterial: return "set_material";
+    case fw::Opcode::kSetLight: return "set_light";
+    case fw::Opcode::kSetMethod: return "set_method";
+    case fw::Opcode::kSetCulling: return "set_culling";
+    case fw::Opcode::kSetDepthTest: return "set_depth_test";
+    case fw::Opcode::kUploadVertices: return "upload_vertices";
+    case fw::Opcode::kUploadIndices: return "upload_indices";
+    case fw::Opcode::kClear: return "clear";
+    case fw::Opcode::kDraw: return "draw";
+    case fw::Opcode::kEndFrame: return "end_frame";
+  }
+  return "unknown opcode " + std::to_string(opcode);
+}
+
+std::string stream_message(std::size_t offset, std::uint32_t opcode, fw::Error e) {
+  return "command " + opcode_name(opcode) + " at word " + std::to_string(offset) +
+         " failed: " + std::string(error_name(e));
+}
+
+}  // namespace
+
+void CommandWriter::header(fw::Opcode op, std::size_t payload_words) {
+  words_.push_back(fw::command_header(op, static_cast<std::uint32_t>(payload_words)));
+}
+
+void CommandWriter::matrix(fw::Opcode op, const fw::Mat4& m) {
+  header(op, 16);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) words_.push_back(bits(m.m[c][r]));
+}
+
+void CommandWriter::set_viewport(const fw::ViewportCmd& c) {
+  header(fw::Opcode::kSetViewport, 4);
+  words_.insert(words_.end(),
+                {c.width, c.height, static_cast<std::uint32_t>(c.format), c.write_count ? 1u : 0u});
+}
+
+void CommandWriter::set_buffer_capacity(const fw::BufferCapacityCmd& c) {
+  header(fw::Opcode::kSetBufferCapacity, 2);
+  words_.insert(words_.end(), {c.max_vertices, c.max_indices});
+}
+
+void CommandWriter::set_eye(fw::EyeMode mode) {
+  header(fw::Opcode::kSetEye, 1);
+  words_.push_back(static_cast<std::uint32_t>(mode));
+}
+
+void CommandWriter::set_material(const fw::MaterialCmd& c) {
+  header(fw::Opcode::kSetMaterial, 9);
+  words_.insert(words_.end(), {bits(c.color[0]), bits(c.color[1]), bits(c.color[2]), bits(c.ka),
+                               bits(c.kd), bits(c.ks), c.n, bits(c.a), bits(c.b)});
+}
+
+void CommandWriter::set_light(const fw::LightCmd& c) {
+  header(fw::Opcode::kSetLight, 11);
+  words_.insert(words_.end(),
+                {c.index, static_cast<std::uint32_t>(c.type), bits(c.color[0]), bits(c.color[1]),
+                 bits(c.color[2]), bits(c.direction.x), bits(c.direction.y), bits(c.direction.z),
+                 bits(c.position.x), bits(c.position.y), bits(c.position.z)});
+}
+
+void CommandWriter::set_method(fw::Method m) {
+  header(fw::Opcode::kSetMethod, 1);
+  words_.push_back(static_cast<std::uint32_t>(m));
+}
+
+void CommandWriter::set_culling(bool on) {
+  header(fw::Opcode::kSetCulling, 1);
+  words_.push_back(on ? 1u : 0u);
+}
+
+void CommandWriter::upload_vertices(std::uint32_t first, std::span<const fw::Vertex> vertices) {
+  std::size_t done = 0;
+  do {  // an empty upload is still sent: the driver's stream does not depend on the mesh size
+    const std::size_t n = std::min(kVerticesPerCommand, vertices.size() - done);
+    header(fw::Opcode::kUploadVertices, 2 + 6 * n);
+    words_.insert(words_.end(),
+                  {first + static_cast<std::uint32_t>(done), static_cast<std::uint32_t>(n)});
+    for (const fw::Vertex& v : vertices.subspan(done, n))
+      words_.insert(words_.end(), {bits(v.position.x), bits(v.position.y), bits(v.position.z),
+                                   bits(v.normal.x), bits(v.normal.y), bits(v.normal.z)});
+    done += n;
+  } while (done < vertices.size());
+}
+
+void CommandWriter::upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices) {
+  std::size_t done = 0;
+  do {
+    const std::size_t n = std::min(kIndicesPerCommand, indices.size() - done);
+    header(fw::Opcode::kUploadIndices, 2 + n);
+    words_.insert(words_.end(),
+                  {first + static_cast<std::uint32_t>(done), static_cast<std::uint32_t>(n)});
+    const auto chunk = indices.subspan(done, n);
+    words_.insert(words_.end(), chunk.begin(), chunk.end());
+    done += n;
+  } while (done < indices.size());
+}
+
+void CommandWriter::clear(fw::Rgb8 colour) {
+  header(fw::Opcode::kClear, 1);
+  words_.push_back((std::uint32_t{colour.r} << 16) | (std::uint32_t{colour.g} << 8) | colour.b);
+}
+
+void CommandWriter::draw(const fw::DrawCmd& c) {
+  header(fw::Opcode::kDraw, 2);
+  words_.insert(words_.end(), {c.first, c.count});
+}
+
+void CommandWriter::end_frame() { header(fw::Opcode::kEndFrame, 0); }
+
+std::string opcode_name(std::uint32_t opcode) { return payload_name(opcode); }
+
+StreamError::StreamError(std::size_t offset, std::uint32_t op, fw::Error e)
+    : std::runtime_error(stream_message(offset, op, e)),
+      word_offset(offset),
+      opcode(op),
+      error(e) {}
+
+void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
+  const fw::Error e = device.execute(words);
+  if (e == fw::Error::kOk) return;
+  const std::size_t at = device.words_consumed();
+  throw StreamError(at, at < words.size() ? words[at] & 0xffffu : 0u, e);
+}
+
+std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
+  fw::ViewportCmd vp{1, 1, fw::PixelFormat::kRgb888, false};
+  fw::BufferCapacityCmd cap{0, 0};
+  for (std::size_t at = 0; at < words.size();) {
+    const std::uint32_t op = words[at] & 0xffffu, len = words[at] >> 16;
+    if (len > words.size() - at - 1) break;
+    const auto p = words.subspan(at + 1, len);
+    // Out-of-range values are the device's to refuse: only plausible ones size the block.
+    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetViewport) && len == 4 &&
+        p[0] <= fw::kMaxDimension && p[1] <= fw::kMaxDimension) {
+      vp.width = std::max(vp.width, p[0]);
+      vp.height = std::max(vp.height, p[1]);
+      vp.write_count = vp.write_count || p[3] == 1;
+    }
+    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2 &&
+        p[0] <= (1u << 24) && p[1] <= (1u << 26)) {
+      cap.max_vertices = std::max(cap.max_vertices, p[0]);
+      cap.max_indices = std::max(cap.max_indices, p[1]);
+    }
+    at += 1 + std::size_t{len};
+  }
+  return fw::Device::memory_required(vp, cap);
+}
+
+std::vector<std::uint32_t> read_command_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path + ": cannot open");
+  const std::vector<char> bytes{std::istreambuf_iterator<char>(f), {}};
+  if (f.bad()) throw std::runtime_error(path + ": read error");
+  if (bytes.size() % 4 != 0)
+    throw std::runtime_error(path + ": " + std::to_string(bytes.size()) +
+                             " bytes is not a whole number of 32-bit words (a truncated file?)");
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), bytes.size());
+  return words;
+}
+
+void write_command_file(const std::string& path, std::span<const std::uint32_t> words) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(words.data()),
+          static_cast<std::streamsize>(words.size_bytes()));
+  if (!f) throw std::runtime_error(path + ": cannot write");
+}
+
+std::uint64_t framebuffer_hash(const fw::FramebufferView& fb) {
+  const std::size_t bpp = fb.format == fw::PixelFormat::kRgb888 ? 3 : 2;
+  return target::framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width);
+}
+
+std::string hash_hex(std::uint64_t h) {
+  static const char* digits = "0123456789abcdef";
+  std::string s(16, '0');
+  for (int i = 15; i >= 0; --i, h >>= 4) s[static_cast<std::size_t>(i)] = digits[h & 15u];
+  return s;
+}
+
+}  // namespace tp::host

@@ -1,0 +1,78 @@
+// The device's command stream on the host side: the encoder the driver (DeviceRenderer) builds
+// every command with, so that what `tinyphong record` writes is exactly what `render` runs;
+// the .tpcmd file (raw little-endian 32-bit words, nothing else; docs/TARGET.md); running a
+// stream with an error that names the word offset; and the framebuffer hash the Cortex-M
+// images print (target/fnv1a.hpp), so that host and target hash the same bytes the same way.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "firmware/device.hpp"
+
+namespace tp::host {
+
+// Appends commands as words, in the layouts of firmware/device.hpp (enum class Opcode).
+class CommandWriter {
+ public:
+  void set_viewport(const fw::ViewportCmd& c);
+  void set_buffer_capacity(const fw::BufferCapacityCmd& c);
+  void set_modelview(const fw::Mat4& m) { matrix(fw::Opcode::kSetModelView, m); }
+  void set_projection(const fw::Mat4& m) { matrix(fw::Opcode::kSetProjection, m); }
+  void set_eye(fw::EyeMode mode);
+  void set_material(const fw::MaterialCmd& c);
+  void set_light(const fw::LightCmd& c);
+  void set_method(fw::Method m);
+  void set_culling(bool on);
+  // Uploads longer than one command can carry (the payload length is 16 bits) are split.
+  void upload_vertices(std::uint32_t first, std::span<const fw::Vertex> vertices);
+  void upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);
+  void clear(fw::Rgb8 colour);
+  void draw(const fw::DrawCmd& c);
+  void end_frame();
+
+  const std::vector<std::uint32_t>& words() const { return words_; }
+
+ private:
+  void header(fw::Opcode op, std::size_t payload_words);
+  void matrix(fw::Opcode op, const fw::Mat4& m);
+  std::vector<std::uint32_t> words_;
+};
+
+// "set_viewport", "upload_vertices", ...; "unknown opcode N" otherwise.
+std::string opcode_name(std::uint32_t opcode);
+
+// A command the device refused: where (word offset of its header), which, and why.
+class StreamError : public std::runtime_error {
+ public:
+  StreamError(std::size_t word_offset, std::uint32_t opcode, fw::Error error);
+  std::size_t word_offset;
+  std::uint32_t opcode;  // 0 if the stream ended inside the header's payload
+  fw::Error error;
+};
+
+// Runs `words` through Device::execute; throws StreamError at the first failing command.
+void run_stream(fw::Device& device, std::span<const std::uint32_t> words);
+
+// The memory block a fresh device needs for this stream: the largest viewport and buffer
+// capacity its commands set (at least a 1x1 viewport, so that a stream without one still
+// reaches the device and fails there with kNoViewport). Malformed headers end the scan; the
+// device then reports them.
+std::size_t memory_for_stream(std::span<const std::uint32_t> words);
+
+// .tpcmd files. read_command_file throws std::runtime_error naming the file if it cannot be
+// read or is not a whole number of 32-bit words.
+std::vector<std::uint32_t> read_command_file(const std::string& path);
+void write_command_file(const std::string& path, std::span<const std::uint32_t> words);
+
+// FNV-1a 64 of the framebuffer's colour bytes, row by row (no stride padding): the hash the
+// Cortex-M images print.
+std::uint64_t framebuffer_hash(const fw::FramebufferView& fb);
+std::string hash_hex(std::uint64_t h);  // 16 lower-case hex digits
+
+}  // namespace tp::host

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Guest instructions per pixel written of the device's draw on the Cortex-M3 (QEMU mps2-an385),
+# for every method and paper scene at the target suite's 160x120 (a benchmark, not a test;
+# docs/TARGET.md). Runs the m3-O2-cost-METHOD images (target/main.cpp built with TP_COST) under
+# `qemu-system-arm -icount shift=0`, where guest time advances exactly 1 ns per instruction:
+# the image reads the MPS2's 25 MHz CMSDK timer around everything from the first draw on
+# (draws, model-views, end_frame) and calibrates ticks against a loop of 2,000,000 known
+# instructions (40 instructions per tick; so the figures have a resolution of 40 instructions
+# per frame). Prints a markdown table: instructions per pixel written, and the ratio to Gouraud.
+#
+# Usage: bash scripts/target-cost.sh [--build DIR] [--methods m1,m2,...]
+#   DIR: a configured and built tree with the target images (default build/release).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=build/release
+methods="flat,gouraud,phong,kb,kb-noskip,kb-decomposition,kb-exact,kb-adaptive,kb-adaptive-noskip,kb-adaptive-exact"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build) build=$2; shift 2 ;;
+    --methods) methods=$2; shift 2 ;;
+    *) echo "usage: $0 [--build DIR] [--methods m1,m2]" >&2; exit 2 ;;
+  esac
+done
+command -v qemu-system-arm >/dev/null || { echo "target-cost.sh: qemu-system-arm missing (scripts/install-deps.sh)" >&2; exit 1; }
+[ -d "$build" ] || { echo "target-cost.sh: no build tree $build (cmake --preset release && cmake --build --preset release)" >&2; exit 1; }
+cmake --build "$build" --target tp_target_images >/dev/null
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for m in ${methods//,/ }; do
+  image=$build/target/m3-O2-cost-$m.elf
+  [ -f "$image" ] || { echo "target-cost.sh: $image missing" >&2; exit 1; }
+  timeout 600 qemu-system-arm -M mps2-an385 -icount shift=0 -nographic -monitor none \
+    -semihosting-config enable=on,target=native -kernel "$image" </dev/null > "$tmp/$m.txt" 2>&1
+  grep -qx done "$tmp/$m.txt" || { echo "target-cost.sh: $image failed:" >&2; tail -3 "$tmp/$m.txt" >&2; exit 1; }
+done
+python3 - "$tmp" "$methods" <<'PY'
+import os, sys
+tmp, methods = sys.argv[1], sys.argv[2].split(",")
+cost = {}  # (scene, method) -> instructions per pixel written
+scenes = []
+for m in methods:
+    per_tick = None
+    for line in open(os.path.join(tmp, m + ".txt")):
+        f = line.split()
+        if f[0] == "calibration":
+            per_tick = int(f[1]) / int(f[2])
+        elif f[0] == "cost":
+            scene, ticks, written = f[1], int(f[2]), int(f[3])
+            if scene not in scenes:
+                scenes.append(scene)
+            cost[scene, m] = ticks * per_tick / written if written else float("nan")
+base = "gouraud" if "gouraud" in methods else None
+print("Guest instructions per pixel written, Cortex-M3 (-O2), 160x120" +
+      (" (in brackets: ratio to gouraud)" if base else ""))
+print()
+print("| scene | " + " | ".join(methods) + " |")
+print("|---|" + "---:|" * len(methods))
+for s in scenes:
+    cells = []
+    for m in methods:
+        c = cost[s, m]
+        cells.append("%.0f" % c + (" (%.2f)" % (c / cost[s, base]) if base and m != base else ""))
+    print("| %s | %s |" % (s, " | ".join(cells)))
+PY

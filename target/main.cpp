@@ -1,0 +1,151 @@
+// A Cortex-M image of the firmware: runs each embedded command stream (recorded on the host by
+// `tinyphong record`, linked in by streams.S) through a fresh tp::fw::Device in a static memory
+// block, and prints per stream
+//     stream NAME HASH          (FNV-1a 64 of the framebuffer's colour bytes, target/fnv1a.hpp)
+// or  stream NAME error CODE at word OFFSET
+// then "done"; exits (semihosting) with success iff every stream ran. tests/target compares
+// the hashes with `tinyphong replay --hash` of the same .tpcmd files.
+//
+// Built with TP_COST (the m3-O2-cost-* images of scripts/target-cost.sh), each stream runs in
+// two parts, the setup and then everything from the first draw on (draws, the model-views
+// between them, end_frame), with the MPS2's CMSDK timer 0 read around the second part; it
+// prints "cost NAME TICKS PIXELS_WRITTEN PIXELS_SHADED", and once, first, a calibration:
+// "calibration INSTRUCTIONS TICKS" of a loop of known length. Under QEMU's -icount shift=0
+// the ticks are proportional to guest instructions.
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <span>
+
+#include "firmware/device.hpp"
+#include "target/fnv1a.hpp"
+#include "target/semihost.hpp"
+
+#ifndef TP_BLOCK_BYTES
+#define TP_BLOCK_BYTES (2u << 20)
+#endif
+#ifndef TP_IMAGE_NAME
+#define TP_IMAGE_NAME "tinyphong"
+#endif
+
+struct EmbeddedStream {
+  const char* name;
+  const std::uint32_t* words;
+  std::uint32_t word_count;
+};
+extern "C" const EmbeddedStream tp_streams[];
+extern "C" const std::uint32_t tp_stream_count;
+
+namespace {
+
+// The device's memory block, and the Device object itself (constructed anew per stream so
+// that each stream starts from a fresh device, as `tinyphong replay` does). Both are static:
+// the firmware has no heap. .noinit: the device clears what it uses.
+alignas(8) __attribute__((section(".noinit"))) std::byte block[TP_BLOCK_BYTES];
+alignas(tp::fw::Device)
+    __attribute__((section(".noinit"))) unsigned char device_storage[sizeof(tp::fw::Device)];
+
+#ifdef TP_COST
+// CMSDK APB timer 0 of the MPS2 FPGA images: a 32-bit down-counter at the 25 MHz peripheral
+// clock (QEMU: hw/arm/mps2.c). Registers: CTRL, VALUE, RELOAD.
+volatile std::uint32_t* timer0() { return reinterpret_cast<volatile std::uint32_t*>(0x40000000u); }
+void timer_start() {
+  timer0()[2] = 0xffffffffu;  // RELOAD
+  timer0()[1] = 0xffffffffu;  // VALUE
+  timer0()[0] = 1u;           // CTRL: enable
+}
+std::uint32_t timer_now() { return timer0()[1]; }
+
+void print_calibration() {
+  using namespace tp::target;
+  constexpr std::uint32_t kIterations = 1000000;  // two instructions each: subs, bne
+  std::uint32_t n = kIterations;
+  const std::uint32_t t0 = timer_now();
+  asm volatile("1: subs %0, %0, #1\n bne 1b" : "+r"(n) : : "cc");
+  const std::uint32_t t1 = timer_now();
+  write("calibration ");
+  write_dec(2u * kIterations);
+  write(" ");
+  write_dec(t0 - t1);
+  write("\n");
+}
+
+// The word offset of the first draw command (the stream's length if there is none).
+std::size_t first_draw(const EmbeddedStream& s) {
+  std::size_t at = 0;
+  while (at < s.word_count &&
+         (s.words[at] & 0xffffu) != static_cast<std::uint32_t>(tp::fw::Opcode::kDraw))
+    at += 1 + (s.words[at] >> 16);
+  return at < s.word_count ? at : s.word_count;
+}
+
+tp::fw::Error execute_timed(tp::fw::Device& device, const EmbeddedStream& s) {
+  using namespace tp::target;
+  const std::size_t split = first_draw(s);
+  const std::span<const std::uint32_t> words(s.words, s.word_count);
+  tp::fw::Error e = device.execute(words.first(split));
+  if (e != tp::fw::Error::kOk) return e;
+  const std::uint32_t t0 = timer_now();
+  e = device.execute(words.subspan(split));
+  const std::uint32_t t1 = timer_now();
+  write("cost ");
+  write(s.name);
+  write(" ");
+  write_dec(t0 - t1);
+  write(" ");
+  write_dec(device.counters().pixels_written);
+  write(" ");
+  write_dec(device.counters().pixels_shaded);
+  write("\n");
+  return e;
+}
+#endif
+
+bool run(const EmbeddedStream& s) {
+  using namespace tp::target;
+  auto* device = new (device_storage) tp::fw::Device(std::span<std::byte>(block, sizeof block));
+#ifdef TP_COST
+  const tp::fw::Error e = execute_timed(*device, s);
+#else
+  const tp::fw::Error e = device->execute(std::span<const std::uint32_t>(s.words, s.word_count));
+#endif
+  write("stream ");
+  write(s.name);
+  bool ok = e == tp::fw::Error::kOk && device->state().viewport_set;
+  if (ok) {
+    const tp::fw::FramebufferView fb = device->framebuffer();
+    const std::size_t bpp = fb.format == tp::fw::PixelFormat::kRgb888 ? 3 : 2;
+    write(" ");
+    write_hex64(framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width));
+    write("\n");
+  } else {
+    write(" error ");
+    write_dec(static_cast<std::uint32_t>(e));
+    write(" at word ");
+    write_dec(device->words_consumed());
+    write("\n");
+  }
+  device->~Device();
+  return ok;
+}
+
+}  // namespace
+
+int main() {
+  using namespace tp::target;
+  write("tinyphong target image " TP_IMAGE_NAME ": sizeof(Device) = ");
+  write_dec(sizeof(tp::fw::Device));
+  write(", block = ");
+  write_dec(sizeof block);
+  write(", streams = ");
+  write_dec(tp_stream_count);
+  write("\n");
+#ifdef TP_COST
+  timer_start();
+  print_calibration();
+#endif
+  bool ok = true;
+  for (std::uint32_t i = 0; i < tp_stream_count; ++i) ok = run(tp_streams[i]) && ok;
+  write(ok ? "done\n" : "done with errors\n");
+  return ok ? 0 : 1;
+}

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command and a
+# refused value each give a message naming the file (and the word offset and the device's
+# error for the stream errors) and a non-zero exit, as does a stream asking for more than
+# replay's memory limit; a good stream replays and hashes.
+# Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
+set -euo pipefail
+tp=$1 scenes=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail=0
+
+"$tp" record "$scenes/triangle.json" --method gouraud --size 160x120 -o "$work/good.tpcmd" >/dev/null
+"$tp" replay "$work/good.tpcmd" --hash -o "$work/good.png" | grep -qE '^[0-9a-f]{16}  .*good.tpcmd$' ||
+  { echo "FAIL: a good stream did not print a hash"; fail=1; }
+
+# expect NAME FILE REGEX: replay must exit non-zero and print REGEX on stderr.
+expect() {
+  local name=$1 file=$2 regex=$3 out status=0
+  out=$("$tp" replay "$file" --hash 2>&1 >/dev/null) || status=$?
+  if [ "$status" -eq 0 ]; then
+    echo "FAIL: $name: exit status 0"; fail=1
+  elif ! grep -qE -- "$regex" <<<"$out"; then
+    echo "FAIL: $name: message '$out' does not match '$regex'"; fail=1
+  else
+    echo "ok: $name: $out"
+  fi
+}
+
+# A file that is not a whole number of words.
+head -c -2 "$work/good.tpcmd" > "$work/partial.tpcmd"
+expect partial-word "$work/partial.tpcmd" "partial.tpcmd: .* not a whole number of 32-bit words"
+
+# An unknown opcode in the first header (word 0).
+cp "$work/good.tpcmd" "$work/opcode.tpcmd"
+printf '\x63\x00' | dd of="$work/opcode.tpcmd" bs=1 seek=0 conv=notrunc status=none
+expect unknown-opcode "$work/opcode.tpcmd" "opcode.tpcmd: command unknown opcode 99 at word 0 failed: bad opcode"
+
+# A stream cut inside its last-but-one command (the draw): a whole number of words.
+words=$(( $(stat -c %s "$work/good.tpcmd") / 4 ))
+head -c $(( 4 * (words - 2) )) "$work/good.tpcmd" > "$work/cut.tpcmd"
+expect truncated "$work/cut.tpcmd" "cut.tpcmd: command draw at word $(( words - 4 )) failed: bad command length"
+
+# A refused value: the viewport's width (word 1) = 5000.
+cp "$work/good.tpcmd" "$work/wide.tpcmd"
+printf '\x88\x13\x00\x00' | dd of="$work/wide.tpcmd" bs=1 seek=4 conv=notrunc status=none
+expect refused-value "$work/wide.tpcmd" "wide.tpcmd: command set_viewport at word 0 failed: viewport too large"
+
+# Three words asking for 2^24 vertices and 2^26 indices: refused before anything is allocated.
+printf '\x02\x00\x02\x00\x00\x00\x00\x01\x00\x00\x00\x04' > "$work/huge.tpcmd"
+expect huge-capacity "$work/huge.tpcmd" "huge.tpcmd: the stream's viewport and buffer capacity need [0-9]+ bytes of device memory, more than replay's limit"
+
+[ $fail -eq 0 ] && echo "replay CLI errors: all as expected"
+exit $fail

@@ -1,0 +1,201 @@
+// `tinyphong record` / `replay`: the recorded words of a frame, run through a fresh device,
+// give the frame `render` gives, bit for bit (colour, coverage, counters), on every paper scene
+// and every method; malformed streams and files are refused with the offset and the reason.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "host/command_stream.hpp"
+#include "host/device_renderer.hpp"
+#include "host/scene.hpp"
+
+namespace tp::host {
+namespace {
+
+// Every scenes/*.json (the paper scenes; scenes/stress/ is a sub-folder and not included).
+std::vector<std::string> paper_scenes() {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(TP_SCENES_DIR))
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Scene scene_at(const std::string& name, const std::string& method, int w, int h) {
+  Scene s = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
+  s.method = method;
+  if (w > 0) {
+    s.width = w;
+    s.height = h;
+  }
+  return s;
+}
+
+struct Replayed {
+  DeviceFrame frame;
+  std::uint64_t hash = 0;
+};
+
+Replayed replay(const std::vector<std::uint32_t>& words) {
+  std::vector<std::byte> memory(memory_for_stream(words));
+  fw::Device device{std::span<std::byte>(memory)};
+  run_stream(device, words);
+  return {read_frame(device), framebuffer_hash(device.framebuffer())};
+}
+
+// Renders and records the same frame, replays the record, compares everything.
+void expect_replay_equals_render(const std::string& name, const std::string& method, int w, int h) {
+  SCOPED_TRACE(name + " / " + method + " at " + std::to_string(w) + "x" + std::to_string(h));
+  const Scene scene = scene_at(name, method, w, h);
+  DeviceRenderer renderer(scene.width, scene.height);
+  renderer.set_scene(scene);
+  const std::vector<std::uint32_t> words = renderer.record(0.0);
+  const DeviceFrame rendered = renderer.render(0.0);
+  const Replayed r = replay(words);
+  ASSERT_EQ(r.frame.width, rendered.width);
+  ASSERT_EQ(r.frame.height, rendered.height);
+  EXPECT_TRUE(r.frame.rgb == rendered.rgb) << "colour differs";
+  EXPECT_TRUE(r.frame.covered == rendered.covered) << "coverage differs";
+  EXPECT_EQ(r.frame.counters, rendered.counters);
+  EXPECT_EQ(r.hash, framebuffer_hash(renderer.device().framebuffer()));
+  // Something was drawn: a replay of an empty frame would prove little.
+  EXPECT_GT(std::count(rendered.covered.begin(), rendered.covered.end(), 1), 0);
+}
+
+TEST(Replay, PaperScenesAreTwentyFour) { EXPECT_EQ(paper_scenes().size(), 24u); }
+
+// Every method on every paper scene at the target tests' size (tests/target).
+TEST(Replay, EveryMethodEverySceneAt160x120) {
+  for (const std::string& name : paper_scenes())
+    for (const MethodName& m : method_names())
+      expect_replay_equals_render(name, std::string(m.name), 160, 120);
+}
+
+// The scenes' own resolutions (512x512, the teapot 640x480) for the main methods.
+TEST(Replay, MainMethodsEverySceneAtOwnResolution) {
+  for (const std::string& name : paper_scenes())
+    for (const char* method : {"gouraud", "phong", "kb", "kb-adaptive"})
+      expect_replay_equals_render(name, method, 0, 0);
+}
+
+// A rotated frame (the server's animation) records the rotated model-view.
+TEST(Replay, RotatedFrame) {
+  const Scene scene = scene_at("teapot", "kb", 160, 120);
+  DeviceRenderer renderer(scene.width, scene.height);
+  renderer.set_scene(scene);
+  const auto words = renderer.record(0.7);
+  EXPECT_NE(words, renderer.record(0.0));
+  EXPECT_EQ(replay(words).frame.rgb, renderer.render(0.7).rgb);
+}
+
+std::vector<std::uint32_t> triangle_stream() {
+  DeviceRenderer renderer(160, 120);
+  renderer.set_scene(scene_at("triangle", "gouraud", 160, 120));
+  return renderer.record(0.0);
+}
+
+// The offsets of the command headers of a well-formed stream.
+std::vector<std::size_t> headers(const std::vector<std::uint32_t>& w) {
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < w.size(); i += 1 + (w[i] >> 16)) at.push_back(i);
+  return at;
+}
+
+StreamError failure_of(const std::vector<std::uint32_t>& words) {
+  try {
+    (void)replay(words);
+  } catch (const StreamError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the stream was accepted";
+  return StreamError(0, 0, fw::Error::kOk);
+}
+
+TEST(Replay, TruncatedStreamNamesTheCommand) {
+  auto words = triangle_stream();
+  const auto at = headers(words);
+  // Cut inside the last draw's payload: the draw header is then short of its payload.
+  const std::size_t draw = at[at.size() - 2];
+  ASSERT_EQ(words[draw] & 0xffffu, static_cast<std::uint32_t>(fw::Opcode::kDraw));
+  words.resize(draw + 2);
+  const StreamError e = failure_of(words);
+  EXPECT_EQ(e.word_offset, draw);
+  EXPECT_EQ(e.error, fw::Error::kBadLength);
+  EXPECT_NE(std::string(e.what()).find("draw at word " + std::to_string(draw)), std::string::npos)
+      << e.what();
+}
+
+TEST(Replay, UnknownOpcodeNamesTheOffset) {
+  auto words = triangle_stream();
+  const std::size_t third = headers(words)[2];
+  words[third] = (words[third] & 0xffff0000u) | 99u;
+  const StreamError e = failure_of(words);
+  EXPECT_EQ(e.word_offset, third);
+  EXPECT_EQ(e.error, fw::Error::kBadOpcode);
+  EXPECT_NE(std::string(e.what()).find("unknown opcode 99"), std::string::npos) << e.what();
+}
+
+TEST(Replay, RefusedValueNamesTheDevicesError) {
+  auto words = triangle_stream();
+  words[1] = 5000;  // the viewport's width, beyond kMaxDimension
+  const StreamError e = failure_of(words);
+  EXPECT_EQ(e.word_offset, 0u);
+  EXPECT_EQ(e.error, fw::Error::kViewportTooLarge);
+  EXPECT_NE(std::string(e.what()).find("set_viewport at word 0"), std::string::npos) << e.what();
+}
+
+// One colour word changed changes the image's hash (what the target tests' mutant relies on).
+TEST(Replay, ChangedClearColourChangesTheHash) {
+  auto words = triangle_stream();
+  const std::uint64_t original = replay(words).hash;
+  for (std::size_t at : headers(words))
+    if ((words[at] & 0xffffu) == static_cast<std::uint32_t>(fw::Opcode::kClear))
+      words[at + 1] ^= 0x00800000u;
+  EXPECT_NE(replay(words).hash, original);
+}
+
+class TempFile {
+ public:
+  explicit TempFile(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() /
+              (name + "-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()))) {}
+  ~TempFile() { std::filesystem::remove(path_); }
+  std::string str() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+TEST(ReplayFile, RoundTripsTheWords) {
+  const auto words = triangle_stream();
+  TempFile f("tp-replay-roundtrip.tpcmd");
+  write_command_file(f.str(), words);
+  EXPECT_EQ(std::filesystem::file_size(f.str()), 4 * words.size());
+  EXPECT_EQ(read_command_file(f.str()), words);
+  // Little-endian on disk: the first byte is the low byte of the first header.
+  std::ifstream in(f.str(), std::ios::binary);
+  EXPECT_EQ(in.get(), static_cast<int>(fw::Opcode::kSetViewport));
+}
+
+TEST(ReplayFile, PartialWordIsRefusedNamingTheFile) {
+  const auto words = triangle_stream();
+  TempFile f("tp-replay-partial.tpcmd");
+  write_command_file(f.str(), words);
+  std::filesystem::resize_file(f.str(), 4 * words.size() - 2);
+  try {
+    (void)read_command_file(f.str());
+    ADD_FAILURE() << "a partial word was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(f.str()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a whole number of 32-bit words"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tp::host

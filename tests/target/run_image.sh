@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Runs a Cortex-M image under QEMU and compares every framebuffer hash it prints with the x86
+# device's hash of the same stream (`tinyphong replay --hash`).
+#   run_image.sh QEMU MACHINE IMAGE TINYPHONG TIMEOUT_S NAME=STREAM.tpcmd...
+# Each NAME must appear as "stream NAME HASH" in the image's output, in order. Prints
+# "hash mismatch: NAME ..." for each difference; exits 0 iff QEMU exited 0, printed "done" and
+# every hash matched.
+set -uo pipefail
+qemu=$1 machine=$2 image=$3 tp=$4 timeout_s=$5
+shift 5
+out=$(timeout "$timeout_s" "$qemu" -M "$machine" -nographic -monitor none \
+        -semihosting-config enable=on,target=native -kernel "$image" </dev/null 2>&1)
+status=$?
+echo "$out" | head -n 1
+fail=0
+if [ $status -ne 0 ]; then
+  echo "FAIL: $qemu -M $machine exited with status $status (124: timeout after ${timeout_s} s)"
+  echo "$out" | tail -n 5
+  fail=1
+fi
+grep -qx "done" <<<"$out" || { echo "FAIL: the image did not print 'done'"; fail=1; }
+# The host's hashes of every stream, in one tinyphong run ("HASH  FILE" lines).
+streams=()
+for pair in "$@"; do streams+=("${pair#*=}"); done
+errors=$(mktemp)
+hashes=$("$tp" replay --hash "${streams[@]}" 2>"$errors"; true)
+cat "$errors" && rm -f "$errors"
+matched=0
+for pair in "$@"; do
+  name=${pair%%=*} stream=${pair#*=}
+  host=$(awk -v f="$stream" '$2 == f { print $1; exit }' <<<"$hashes")
+  target=$(awk -v n="$name" '$1 == "stream" && $2 == n { $1 = ""; $2 = ""; sub(/^ +/, ""); print; exit }' <<<"$out")
+  if [ -z "$host" ]; then
+    echo "FAIL: the host did not hash $stream"
+    fail=1
+  elif [ "$target" != "$host" ]; then
+    echo "hash mismatch: $name: target '${target:-<missing>}', host $host ($stream)"
+    fail=1
+  else
+    matched=$((matched + 1))
+  fi
+done
+echo "$machine $(basename "$image"): $matched of $# streams bit-identical to the host"
+exit $fail
