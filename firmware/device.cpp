@@ -104,17 +104,16 @@ MethodSlot method_slot(Method m) {
 // The span target of a draw: asks the method for the span's colours, then depth-tests and
 // writes them. Depth is interpolated linearly in screen space (NDC z is screen-affine).
 //
-// Everything that is fixed for the triangle — the regions' addresses, the pixel format, the
-// depth test, the write counts — is resolved once, in the constructor, into base pointers and
-// the two pixel loops (with and without depth saturation) for this state; the counters are
-// summed in members and added to the device's once, by flush_counters(). Per span there is then
-// the method's call, the depth plane at the span's start, and one call of the chosen loop.
+// Everything that is fixed for the draw — the regions' addresses, the pixel format, the depth
+// test, the write counts — is resolved once per draw, in the constructor, into base pointers
+// and the two pixel loops (with and without depth saturation) for this state; begin() takes
+// each triangle's depth plane, and the counters are summed in members and added to the
+// device's once, by flush_counters(). Per span there is then the method's call, the depth at
+// the span's start, and one call of the chosen loop.
 class PixelWriter final : public SpanTarget {
  public:
-  PixelWriter(Device& d, const Triangle& t, ShadingMethod& m) : dev_(d), tri_(t), method_(m) {
+  explicit PixelWriter(Device& d) : dev_(d) {
     const DeviceState& st = d.state_;
-    zplane_.setup(t, t.v[0].z, t.v[1].z, t.v[2].z);
-    dz_ = zplane_.step_x();
     width_ = st.viewport.width;
     bytes_per_pixel_ = bytes_per_pixel(st.viewport.format);
     colours_ = d.region<Rgb8>(st.off_span);
@@ -126,13 +125,20 @@ class PixelWriter final : public SpanTarget {
     write_exact_ = kLoops[1][variant];
     write_saturating_ = kLoops[0][variant];
   }
+  // The next triangle, set up by method m.
+  void begin(const Triangle& t, ShadingMethod& m) {
+    tri_ = &t;
+    method_ = &m;
+    zplane_.setup(t, t.v[0].z, t.v[1].z, t.v[2].z);
+    dz_ = zplane_.step_x();
+  }
   void span(const Span& s) override {
-    method_.shade_span(s, colours_);
+    method_->shade_span(s, colours_);
     const std::int32_t n = s.x1 - s.x0;
     ++spans_;
     pixels_shaded_ += static_cast<std::uint64_t>(n);
     const std::size_t row = static_cast<std::size_t>(s.y) * width_;
-    const Lambdas lam = lambdas_at(tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
+    const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
     const std::int64_t z = zplane_.at(lam) << ScreenPlane::kStepFrac;
     const Run run{colours_,
                   depth_ + row,
@@ -220,8 +226,8 @@ class PixelWriter final : public SpanTarget {
        write<true, true, false, true>, write<true, true, true, true>}};
 
   Device& dev_;
-  const Triangle& tri_;
-  ShadingMethod& method_;
+  const Triangle* tri_ = nullptr;
+  ShadingMethod* method_ = nullptr;
   ScreenPlane zplane_;
   std::int64_t dz_ = 0;
   std::size_t width_ = 0, bytes_per_pixel_ = 3;
@@ -268,7 +274,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
 
 std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
   std::size_t largest = 0;
-  for (std::uint32_t id = 0; id <= 32; ++id) {
+  for (std::uint32_t id = 0; id < 32; ++id) {  // every id of Method (types.hpp) is below 32
     const auto m = static_cast<Method>(id);
     if (method_bytes(m) != 0) largest = std::max(largest, memory_required(vp, cap, m));
   }
@@ -517,14 +523,16 @@ Error Device::draw(const DrawCmd& cmd) {
   }
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
     (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
+  PixelWriter writer(*this);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) {
     const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
-    draw_triangle(tri);
+    draw_triangle(tri, writer);
   }
+  writer.flush_counters();
   return ok();
 }
 
-void Device::draw_triangle(const ClipVertex tri[3]) {
+void Device::draw_triangle(const ClipVertex tri[3], PixelWriter& writer) {
   ++counters_.triangles_in;
   ClipVertex poly[kMaxClipVertices];
   const ClipResult cr = clip_triangle(tri, poly);
@@ -562,11 +570,11 @@ void Device::draw_triangle(const ClipVertex tri[3]) {
     ++counters_.triangles_culled;
     return;
   }
-  for (int i = 1; i + 1 < cr.count; ++i) draw_fan_triangle(sv[0], sv[i], sv[i + 1], front);
+  for (int i = 1; i + 1 < cr.count; ++i) draw_fan_triangle(sv[0], sv[i], sv[i + 1], front, writer);
 }
 
 void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
-                               bool front) {
+                               bool front, PixelWriter& writer) {
   const std::int64_t area2 = edge_function(a, b, c.sx, c.sy);
   // A fan piece whose orientation disagrees with the polygon's is a snapping artefact.
   if (area2 == 0 || (area2 < 0) != front) {
@@ -586,11 +594,10 @@ void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const
     return;
   }
   ++counters_.triangles_drawn;
-  PixelWriter writer(*this, t, m);
+  writer.begin(t, m);
   (void)rasterize(t, static_cast<std::int32_t>(state_.viewport.width),
                   static_cast<std::int32_t>(state_.viewport.height), writer,
                   m.reads_edge_positions() ? EdgeParameters::kWith : EdgeParameters::kWithout);
-  writer.flush_counters();
 }
 
 FramebufferView Device::framebuffer() const {

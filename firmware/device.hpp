@@ -20,7 +20,8 @@
 // method (static_assert below: at most 4 KiB).
 //
 // Why the method is last: its size depends on the method (from a few dozen bytes for Gouraud
-// to tens of KiB for the Kuijk-Blake tables), and a method change must not move the buffers.
+// to a quarter of a MiB for kb-adaptive's sample lattice), and a method change must not move
+// the buffers.
 //
 // Depth buffer: 32-bit. NDC z in [-1, 1] maps to [0, 2^32 - 1]; 16 bits would leave a
 // perspective camera with far/near = 1000 less than one depth step per 1/1000 of the depth
@@ -39,12 +40,12 @@
 
 namespace tp::fw {
 
-// Everything a command can change, apart from the memory block and the counters.
-// Trivially copyable: tests byte-compare it across failing commands.
 // The depth word clear() stores: the far plane, which no write can store (a pixel is written
 // only with a depth word below the stored one, when the depth test is on).
 inline constexpr std::uint32_t kDepthFar = 0xffffffffu;
 
+// Everything a command can change, apart from the memory block and the counters.
+// Trivially copyable: tests byte-compare it across failing commands.
 struct DeviceState {
   bool viewport_set = false;
   ViewportCmd viewport;
@@ -92,6 +93,8 @@ enum class Opcode : std::uint16_t {
 inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_words) {
   return static_cast<std::uint32_t>(op) | (payload_words << 16);
 }
+
+class PixelWriter;  // device.cpp: a draw's depth test and framebuffer writes
 
 class Device {
  public:
@@ -150,9 +153,9 @@ class Device {
   T* region(std::size_t off) const {
     return reinterpret_cast<T*>(mem_.data() + off);
   }
-  void draw_triangle(const ClipVertex tri[3]);
+  void draw_triangle(const ClipVertex tri[3], PixelWriter& writer);
   void draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
-                         bool front);
+                         bool front, PixelWriter& writer);
   Error execute_one(Opcode op, std::span<const std::uint32_t> p);
   static Error validate_vertex(const Vertex& v);
 
