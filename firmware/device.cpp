@@ -267,7 +267,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
   n += align8(pixels * bytes_per_pixel(vp.format));
   n += align8(pixels * sizeof(std::uint32_t));
   if (vp.write_count) n += align8(pixels);
-  n += align8(kMaxDimension * sizeof(Rgb8));
+  n += align8(std::size_t{vp.width} * sizeof(Rgb8));  // one span: at most the viewport's width
   n += align8(method_bytes(m));
   return n;
 }
@@ -300,7 +300,7 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
   s.off_counts = o;
   if (vp.write_count) o += align8(pixels);
   s.off_span = o;
-  o += align8(kMaxDimension * sizeof(Rgb8));
+  o += align8(std::size_t{vp.width} * sizeof(Rgb8));
   s.off_method = o;
   o += align8(method_bytes(s.method));
   s.end = o;

@@ -12,7 +12,7 @@
 //   colour     width x height x 3 (RGB888) or 2 (RGB565, little-endian 5:6:5)
 //   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
 //   counts     width x height x uint8         (only if ViewportCmd::write_count)
-//   span       kMaxDimension x Rgb8           (a method's output for one span)
+//   span       width x Rgb8                   (a method's output for one span)
 //   method     method_bytes(method)           (the active method's state: constructed there by
 //                                              set_method and by every layout change)
 // memory_required() gives the size for a configuration: for one method, or enough for every

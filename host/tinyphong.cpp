@@ -8,6 +8,7 @@
 //   tinyphong record scenes/teapot.json --method kb -o teapot.tpcmd [--size WxH]
 //   tinyphong record scenes/*.json --method kb --dir streams/ [--size WxH]
 //   tinyphong replay teapot.tpcmd [-o out.png] [--hash]   (several files with --hash)
+//   tinyphong memory [--vertices N] [--indices N]
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <optional>
 #include <string>
 
@@ -286,6 +288,48 @@ int run_replay(const std::vector<std::string>& in, const std::string& out, bool 
   return status;
 }
 
+// The device's memory block per resolution, pixel format and method (Device::memory_required):
+// what a port to a part with fixed RAM needs to know (docs/TARGET.md, "Memory").
+int run_memory(std::uint32_t vertices, std::uint32_t indices) {
+  using tp::fw::Method;
+  const struct { std::uint32_t w, h; } sizes[] = {{160, 120}, {320, 240}, {640, 480}};
+  const struct {
+    tp::fw::PixelFormat format;
+    const char* name;
+  } formats[] = {{tp::fw::PixelFormat::kRgb565, "RGB565"},
+                 {tp::fw::PixelFormat::kRgb888, "RGB888"}};
+  // One column per distinct method state (the -noskip and -exact variants share their method's).
+  const Method columns[] = {Method::kFlat,
+                            Method::kGouraud,
+                            Method::kPhong,
+                            Method::kKuijkBlake,
+                            Method::kKuijkBlakeDecomposition,
+                            Method::kKuijkBlakeExact,
+                            Method::kKuijkBlakeAdaptive};
+  const tp::fw::BufferCapacityCmd cap{vertices, indices};
+  std::cout << "Device memory block in bytes (Device::memory_required), " << vertices
+            << " vertices and " << indices << " indices, depth buffer, no write counts\n\n";
+  std::cout << "| resolution | format |";
+  for (const Method m : columns) std::cout << " " << method_name(m) << " |";
+  std::cout << "\n|---|---|";
+  for (std::size_t i = 0; i < std::size(columns); ++i) std::cout << "---:|";
+  std::cout << "\n";
+  for (const auto& size : sizes)
+    for (const auto& format : formats) {
+      const tp::fw::ViewportCmd vp{size.w, size.h, format.format, false};
+      std::cout << "| " << size.w << "x" << size.h << " | " << format.name << " |";
+      for (const Method m : columns)
+        std::cout << " " << tp::fw::Device::memory_required(vp, cap, m) << " |";
+      std::cout << "\n";
+    }
+  std::cout << "\nsizeof(Device) = " << sizeof(tp::fw::Device)
+            << " bytes, outside the block; method state in the block:";
+  for (const Method m : columns)
+    std::cout << " " << method_name(m) << " " << tp::fw::Device::method_bytes(m) << ";";
+  std::cout << "\n";
+  return 0;
+}
+
 struct StressCli {
   stress::Options options;
   std::string json;
@@ -419,6 +463,14 @@ int main(int argc, char** argv) {
   replay->add_flag("--hash", rep_hash,
                    "print the FNV-1a 64 hash of the framebuffer (what the Cortex-M images print)");
 
+  std::uint32_t mem_vertices = 0, mem_indices = 0;
+  auto* memory = app.add_subcommand(
+      "memory", "the device's memory block per resolution, pixel format and method (bytes)");
+  memory->add_option("--vertices", mem_vertices, "vertex buffer capacity")
+      ->check(CLI::Range(0u, 1u << 24));
+  memory->add_option("--indices", mem_indices, "index buffer capacity")
+      ->check(CLI::Range(0u, 1u << 26));
+
   StressCli stress_cli;
   add_stress(app, stress_cli);
 
@@ -430,6 +482,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("stress")) return run_stress(stress_cli);
     if (*record) return run_record(rec);
     if (*replay) return run_replay(rep_in, rep_out, rep_hash);
+    if (*memory) return run_memory(mem_vertices, mem_indices);
     if (*methods) {
       for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
       return 0;

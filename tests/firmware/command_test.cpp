@@ -203,6 +203,52 @@ TEST(Commands, NoViewportRefusesDrawAndClear) {
   EXPECT_EQ(d.write_counts(), nullptr);
 }
 
+// memory_required(viewport, capacity, method) is exact: a block of that size takes the capacity,
+// the method and the viewport, one byte less refuses the viewport (kOutOfMemory, nothing
+// changed), and the two-argument form covers every method.
+TEST(Commands, MemoryRequiredIsExactPerMethod) {
+  const ViewportCmd vp{160, 120, PixelFormat::kRgb565, false};
+  const BufferCapacityCmd cap{64, 192};
+  const Method methods[] = {Method::kFlat,
+                            Method::kGouraud,
+                            Method::kPhong,
+                            Method::kKuijkBlake,
+                            Method::kKuijkBlakeNoSkip,
+                            Method::kKuijkBlakeDecomposition,
+                            Method::kKuijkBlakeExact,
+                            Method::kKuijkBlakeAdaptive,
+                            Method::kKuijkBlakeAdaptiveNoSkip,
+                            Method::kKuijkBlakeAdaptiveExact};
+  for (const Method m : methods) {
+    const std::size_t need = Device::memory_required(vp, cap, m);
+    EXPECT_GT(Device::method_bytes(m), 0u);
+    EXPECT_LE(need, Device::memory_required(vp, cap)) << static_cast<int>(m);
+    // The block's start is 8-byte aligned here (vector storage), so no byte is skipped. The
+    // method first (with no viewport yet its layout is small), then the viewport, which needs
+    // the whole block.
+    std::vector<std::byte> exact(need), short_by_one(need - 1);
+    Device a(exact), b(short_by_one);
+    for (Device* d : {&a, &b}) {
+      EXPECT_EQ(d->set_buffer_capacity(cap), Error::kOk);
+      EXPECT_EQ(d->set_method(m), Error::kOk) << static_cast<int>(m);
+    }
+    EXPECT_EQ(a.set_viewport(vp), Error::kOk) << static_cast<int>(m);
+    std::vector<std::byte> before(sizeof(DeviceState));
+    std::memcpy(before.data(), &b.state(), sizeof(DeviceState));
+    EXPECT_EQ(b.set_viewport(vp), Error::kOutOfMemory) << static_cast<int>(m);
+    EXPECT_EQ(std::memcmp(before.data(), &b.state(), sizeof(DeviceState)), 0);
+  }
+  // The buffers alone: the colour (2 bytes per pixel), the depth (4), one span of the viewport's
+  // width, the vertices and their transformed copies, the indices, each rounded up to 8 bytes.
+  const std::size_t pixels = 160 * 120;
+  const auto align8 = [](std::size_t v) { return (v + 7) & ~std::size_t{7}; };
+  const std::size_t buffers = align8(64 * sizeof(Vertex)) + align8(64 * sizeof(ClipVertex)) +
+                              align8(192 * 4) + align8(pixels * 2) + align8(pixels * 4) +
+                              align8(160 * sizeof(Rgb8));
+  EXPECT_EQ(Device::memory_required(vp, cap, Method::kGouraud),
+            buffers + align8(Device::method_bytes(Method::kGouraud)));
+}
+
 TEST(Commands, TinyMemoryNeverCrashes) {
   std::vector<std::byte> mem(16);
   Device d(mem);

@@ -29,7 +29,7 @@ namespace {
 using tp::fw::Device;
 using tp::fw::Error;
 
-// Room for the span buffer (12 KiB), a viewport of about 40 x 40 and a hundred vertices, plus the
+// Room for a viewport of about 40 x 40 and a hundred vertices (32 KiB), plus the
 // largest method's state (memory_required without a method covers every method, so that the
 // fuzzer can select and draw with each): a command needing more is refused with kOutOfMemory,
 // which is itself a path under test. The snapshots copy only the block's used part, [0, end) of
@@ -37,7 +37,7 @@ using tp::fw::Error;
 // (copying a 96 KiB block at every command made fuzzing 3 times slower).
 std::size_t memory_bytes() {
   static const std::size_t bytes =
-      20 * 1024 + Device::memory_required(tp::fw::ViewportCmd{}, tp::fw::BufferCapacityCmd{});
+      32 * 1024 + Device::memory_required(tp::fw::ViewportCmd{}, tp::fw::BufferCapacityCmd{});
   return bytes;
 }
 
