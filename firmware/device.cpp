@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <type_traits>
 
@@ -64,6 +65,7 @@ std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
 struct MethodSlot {
   std::size_t bytes = 0;
   ShadingMethod* (*construct)(void* where) = nullptr;
+  bool lights_vertices = false;  // gets the lit-vertex cache region (VertexLevels per vertex)
 };
 template <class T, auto... kArgs>
 ShadingMethod* construct_at(void* where) {
@@ -74,8 +76,21 @@ ShadingMethod* construct_at(void* where) {
 }
 template <class T, auto... kArgs>
 constexpr MethodSlot slot_of() {
-  return MethodSlot{sizeof(T), construct_at<T, kArgs...>};
+  constexpr bool lights = [] {
+    if constexpr (requires { T::kLightsVertices; })
+      return T::kLightsVertices;
+    else
+      return false;
+  }();
+  return MethodSlot{sizeof(T), construct_at<T, kArgs...>, lights};
 }
+MethodSlot method_slot(Method m);
+// The lit-vertex cache's bytes for method m (0 for a method that does not light vertices).
+std::size_t levels_bytes(Method m, const BufferCapacityCmd& cap) {
+  return method_slot(m).lights_vertices ? std::size_t{cap.max_vertices} * sizeof(VertexLevels) : 0;
+}
+// A normal the draw has not transformed yet: no unit normal has this raw x (|x| <= 2^30).
+constexpr std::int32_t kNormalPending = std::numeric_limits<std::int32_t>::min();
 MethodSlot method_slot(Method m) {
   switch (m) {
     case Method::kFlat: return slot_of<FlatMethod>();
@@ -268,6 +283,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
   n += align8(pixels * sizeof(std::uint32_t));
   if (vp.write_count) n += align8(pixels);
   n += align8(std::size_t{vp.width} * sizeof(Rgb8));  // one span: at most the viewport's width
+  n += align8(levels_bytes(m, cap));
   n += align8(method_bytes(m));
   return n;
 }
@@ -301,6 +317,8 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
   if (vp.write_count) o += align8(pixels);
   s.off_span = o;
   o += align8(std::size_t{vp.width} * sizeof(Rgb8));
+  s.off_levels = o;
+  o += align8(levels_bytes(s.method, cap));
   s.off_method = o;
   o += align8(method_bytes(s.method));
   s.end = o;
@@ -329,6 +347,7 @@ Error Device::set_buffer_capacity(const BufferCapacityCmd& cmd) {
   if (!layout(state_.viewport, cmd, s)) return fail(Error::kOutOfMemory);
   s.vertex_count = 0;
   s.index_count = 0;
+  s.coordinate_bound = 0;
   release_method();
   state_ = s;
   construct_method();                                     // its region may have moved
@@ -355,6 +374,7 @@ Error Device::set_projection(const Mat4& m) {
 Error Device::set_eye(EyeMode mode) {
   if (mode != EyeMode::kFinite && mode != EyeMode::kInfinite) return fail(Error::kBadArgument);
   state_.shading.eye = mode;
+  ++state_.shading.revision;
   return ok();
 }
 
@@ -369,6 +389,7 @@ Error Device::set_material(const MaterialCmd& cmd) {
   if (!unset && !(cmd.a.raw() >= 0 && cmd.a < cmd.b && cmd.b <= fx::half_pi()))
     return fail(Error::kOutOfRange);
   state_.shading.material = cmd;
+  ++state_.shading.revision;
   return ok();
 }
 
@@ -394,6 +415,7 @@ Error Device::set_light(const LightCmd& cmd) {
     l.position = cmd.position;
   }
   state_.shading.lights[cmd.index] = l;
+  ++state_.shading.revision;
   return ok();
 }
 
@@ -454,6 +476,12 @@ Error Device::upload_vertices(std::uint32_t first, std::span<const Vertex> verti
     std::memcpy(region<Vertex>(state_.off_vertices) + first, vertices.data(),
                 vertices.size_bytes());
   if (end > state_.vertex_count) state_.vertex_count = static_cast<std::uint32_t>(end);
+  const auto magnitude = [](q15_16 c) {
+    return static_cast<std::uint32_t>(c.raw() < 0 ? -c.raw() : c.raw());  // |raw| <= 2^14·2^16
+  };
+  for (const Vertex& v : vertices)
+    state_.coordinate_bound = std::max({state_.coordinate_bound, magnitude(v.position.x),
+                                        magnitude(v.position.y), magnitude(v.position.z)});
   return ok();
 }
 
@@ -512,39 +540,66 @@ Error Device::draw(const DrawCmd& cmd) {
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
-  // Validate every transform before touching memory (a failing draw changes nothing), then
-  // fill the vertex cache.
+  // Every position must transform before memory is touched (a failing draw changes nothing):
+  // proven for all of them at once from the uploaded coordinates' bound where it can be, else
+  // checked vertex by vertex.
   const Vertex* verts = region<Vertex>(state_.off_vertices);
+  if (!transform_cannot_fail(state_.modelview, state_.projection, state_.coordinate_bound))
+    for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
+      ClipVertex tmp;
+      if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
+        return fail(Error::kOutOfRange);
+    }
+  // The vertex cache: every position now, each normal when a triangle that is drawn first
+  // needs it (vertex_normal), each vertex's colour when a method that lights vertices first
+  // needs it (Triangle::levels). A back face or a clipped-away triangle costs no normal.
   ClipVertex* cache = region<ClipVertex>(state_.off_cache);
+  VertexLevels* levels =
+      state_.off_method > state_.off_levels ? region<VertexLevels>(state_.off_levels) : nullptr;
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
-    ClipVertex tmp;
-    if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
-      return fail(Error::kOutOfRange);
+    (void)transform_position(state_.modelview, state_.projection, verts[i], cache[i]);
+    cache[i].normal.x = q1_30::from_raw(kNormalPending);
+    if (levels != nullptr) levels[i].c[0] = -1;
   }
-  for (std::uint32_t i = 0; i < state_.vertex_count; ++i)
-    (void)transform_vertex(state_.modelview, state_.projection, verts[i], cache[i]);
   PixelWriter writer(*this);
-  for (std::uint32_t t = 0; t < cmd.count; t += 3) {
-    const ClipVertex tri[3] = {cache[idx[t]], cache[idx[t + 1]], cache[idx[t + 2]]};
-    draw_triangle(tri, writer);
-  }
+  for (std::uint32_t t = 0; t < cmd.count; t += 3) draw_triangle(idx + t, levels, writer);
   writer.flush_counters();
   return ok();
 }
 
-void Device::draw_triangle(const ClipVertex tri[3], PixelWriter& writer) {
+const Vec3u& Device::vertex_normal(std::uint32_t id) {
+  ClipVertex& v = region<ClipVertex>(state_.off_cache)[id];
+  if (v.normal.x.raw() == kNormalPending)
+    v.normal = transform_normal(state_.modelview, region<Vertex>(state_.off_vertices)[id]);
+  return v.normal;
+}
+
+void Device::draw_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer) {
   ++counters_.triangles_in;
-  ClipVertex poly[kMaxClipVertices];
-  const ClipResult cr = clip_triangle(tri, poly);
-  if (cr.count == 0) {
+  const ClipVertex* cache = region<ClipVertex>(state_.off_cache);
+  ClipVertex tri[3] = {cache[id[0]], cache[id[1]], cache[id[2]]};
+  const ClipClass cls = classify(tri);
+  if (cls == ClipClass::kOutside) {
     ++counters_.triangles_rejected;
     return;
   }
-  if (cr.clipped) ++counters_.triangles_clipped;
+  ClipResult cr{3, false};
+  ClipVertex poly[kMaxClipVertices];
+  if (cls == ClipClass::kCrossing) {
+    // Clipping interpolates the normals: the three are needed before it.
+    for (int i = 0; i < 3; ++i) tri[i].normal = vertex_normal(id[i]);
+    cr = ClipResult{clip_crossing(tri, poly), true};
+    if (cr.count == 0) {
+      ++counters_.triangles_rejected;
+      return;
+    }
+    ++counters_.triangles_clipped;
+  }
+  const ClipVertex* in = cr.clipped ? poly : tri;
   const auto w = static_cast<std::int32_t>(state_.viewport.width);
   const auto h = static_cast<std::int32_t>(state_.viewport.height);
   ShadeVertex sv[kMaxClipVertices];
-  for (int i = 0; i < cr.count; ++i) sv[i] = project(poly[i], w, h);
+  for (int i = 0; i < cr.count; ++i) sv[i] = project(in[i], w, h);
   // Facing of an unclipped triangle: its snapped screen area, front = clockwise on screen
   // (y down) = negative edge function here. For a clipped triangle the exact homogeneous
   // determinant decides instead: the snapped pieces of a zero-area or sliver triangle could
@@ -570,11 +625,17 @@ void Device::draw_triangle(const ClipVertex tri[3], PixelWriter& writer) {
     ++counters_.triangles_culled;
     return;
   }
-  for (int i = 1; i + 1 < cr.count; ++i) draw_fan_triangle(sv[0], sv[i], sv[i + 1], front, writer);
+  if (!cr.clipped)
+    for (int i = 0; i < 3; ++i) {
+      sv[i].normal = vertex_normal(id[i]);
+      sv[i].id = static_cast<std::int32_t>(id[i]);  // < 2^24 (layout's capacity bound)
+    }
+  for (int i = 1; i + 1 < cr.count; ++i)
+    draw_fan_triangle(sv[0], sv[i], sv[i + 1], front, levels, writer);
 }
 
 void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
-                               bool front, PixelWriter& writer) {
+                               bool front, VertexLevels* levels, PixelWriter& writer) {
   const std::int64_t area2 = edge_function(a, b, c.sx, c.sy);
   // A fan piece whose orientation disagrees with the polygon's is a snapping artefact.
   if (area2 == 0 || (area2 < 0) != front) {
@@ -588,6 +649,7 @@ void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const
   t.v[1] = area2 > 0 ? b : c;
   t.v[2] = area2 > 0 ? c : b;
   t.area2 = area2 > 0 ? area2 : -area2;
+  t.levels = levels;
   ShadingMethod& m = method();
   if (!m.setup(t, state_.shading)) {
     ++counters_.triangles_skipped;

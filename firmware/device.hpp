@@ -13,6 +13,8 @@
 //   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
 //   counts     width x height x uint8         (only if ViewportCmd::write_count)
 //   span       width x Rgb8                   (a method's output for one span)
+//   levels     max_vertices x VertexLevels    (per-draw lit colours, only for a method that
+//                                              lights vertices: Gouraud)
 //   method     method_bytes(method)           (the active method's state: constructed there by
 //                                              set_method and by every layout change)
 // memory_required() gives the size for a configuration: for one method, or enough for every
@@ -58,9 +60,12 @@ struct DeviceState {
   bool depth_test = true;
   std::uint32_t vertex_count = 0;  // vertices uploaded so far (high-water mark)
   std::uint32_t index_count = 0;
+  // The largest |coordinate| (raw Q15.16) uploaded since the capacity was set: lets a draw prove
+  // that every position transforms (geometry.hpp, transform_cannot_fail).
+  std::uint32_t coordinate_bound = 0;
   // Region offsets into the memory block (see the layout above).
   std::size_t off_vertices = 0, off_cache = 0, off_indices = 0, off_colour = 0, off_depth = 0,
-              off_counts = 0, off_span = 0, off_method = 0, end = 0;
+              off_counts = 0, off_span = 0, off_levels = 0, off_method = 0, end = 0;
 };
 
 struct FramebufferView {
@@ -153,9 +158,10 @@ class Device {
   T* region(std::size_t off) const {
     return reinterpret_cast<T*>(mem_.data() + off);
   }
-  void draw_triangle(const ClipVertex tri[3], PixelWriter& writer);
+  void draw_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer);
   void draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
-                         bool front, PixelWriter& writer);
+                         bool front, VertexLevels* levels, PixelWriter& writer);
+  const Vec3u& vertex_normal(std::uint32_t id);  // transformed on first use in a draw
   Error execute_one(Opcode op, std::span<const std::uint32_t> p);
   static Error validate_vertex(const Vertex& v);
 

@@ -104,26 +104,73 @@ bool transform_position(const Mat4& mv, const Mat4& proj, const Vertex& in, Clip
   return true;
 }
 
+Vec3u transform_normal(const Mat4& mv, const Vertex& in) {
+  const wide nx = in.normal.x.raw(), ny = in.normal.y.raw(), nz = in.normal.z.raw();
+  return normalize_wide(row_times(mv, 0, nx, ny, nz, 0), row_times(mv, 1, nx, ny, nz, 0),
+                        row_times(mv, 2, nx, ny, nz, 0));
+}
+
 bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out) {
   if (!transform_position(mv, proj, in, out)) return false;
-  const wide nx = in.normal.x.raw(), ny = in.normal.y.raw(), nz = in.normal.z.raw();
-  out.normal = normalize_wide(row_times(mv, 0, nx, ny, nz, 0), row_times(mv, 1, nx, ny, nz, 0),
-                              row_times(mv, 2, nx, ny, nz, 0));
+  out.normal = transform_normal(mv, in);
   return true;
 }
 
-ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]) {
+namespace {
+
+// |round_shift_right(row_times(m, i, ...), 16)| for inputs of magnitude at most in[0..2] (and 1
+// for the fourth), raw, rounded up; saturated at 2^63 (then nothing fits anyway).
+std::uint64_t row_bound(const Mat4& m, int i, const std::uint64_t in[3]) {
+  const auto mag = [](std::int32_t v) {
+    return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(std::int64_t{v})
+                 : static_cast<std::uint64_t>(v);
+  };
+  std::uint64_t sum = mag(m.m[3][i].raw()) << 16;  // < 2^48
+  for (int j = 0; j < 3; ++j) {
+    if (in[j] >= (std::uint64_t{1} << 32)) return std::uint64_t{1} << 63;
+    sum += mag(m.m[j][i].raw()) * in[j];  // each < 2^63 ... three of them: see below
+    if (sum >= (std::uint64_t{1} << 63)) return std::uint64_t{1} << 63;
+  }
+  return (sum >> 16) + 1;
+}
+
+}  // namespace
+
+bool transform_cannot_fail(const Mat4& mv, const Mat4& proj, std::uint32_t coordinate_bound) {
+  const std::uint64_t b[3] = {coordinate_bound, coordinate_bound, coordinate_bound};
+  std::uint64_t eye[3];
+  for (int i = 0; i < 3; ++i) {
+    eye[i] = row_bound(mv, i, b);
+    if (eye[i] > static_cast<std::uint64_t>(q15_16::max_raw)) return false;
+  }
+  for (int i = 0; i < 4; ++i)
+    if (row_bound(proj, i, eye) > static_cast<std::uint64_t>(q15_16::max_raw)) return false;
+  return true;
+}
+
+ClipClass classify(const ClipVertex in[3]) {
   bool all_inside = true;
   for (int p = 0; p < kClipPlanes; ++p) {
     int outside = 0;
     for (int i = 0; i < 3; ++i) outside += plane_distance(in[i], p) < 0 ? 1 : 0;
-    if (outside == 3) return ClipResult{0, true};
+    if (outside == 3) return ClipClass::kOutside;
     all_inside = all_inside && outside == 0;
   }
-  if (all_inside) {
-    for (int i = 0; i < 3; ++i) out[i] = in[i];
-    return ClipResult{3, false};
+  return all_inside ? ClipClass::kInside : ClipClass::kCrossing;
+}
+
+ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]) {
+  switch (classify(in)) {
+    case ClipClass::kOutside: return ClipResult{0, true};
+    case ClipClass::kInside:
+      for (int i = 0; i < 3; ++i) out[i] = in[i];
+      return ClipResult{3, false};
+    case ClipClass::kCrossing: break;
   }
+  return ClipResult{clip_crossing(in, out), true};
+}
+
+int clip_crossing(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]) {
   ClipVertex tmp[kMaxClipVertices];
   for (int i = 0; i < 3; ++i) tmp[i] = in[i];
   int n = 3;
@@ -131,7 +178,7 @@ ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices
     n = clip_against(p, tmp, n, out);
     for (int i = 0; i < n; ++i) tmp[i] = out[i];
   }
-  return ClipResult{n, true};
+  return n;
 }
 
 ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height) {

@@ -25,8 +25,15 @@ struct ClipVertex {
 // (rigid motion + uniform scale assumed). False if a result does not fit Q15.16.
 bool transform_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out);
 // The position part alone (clip and eye; the normal untouched): whether transform_vertex
-// succeeds, for the draw's validation pass, at a third of its cost.
+// succeeds. The draw transforms every position and only the normals that a drawn triangle uses.
 bool transform_position(const Mat4& mv, const Mat4& proj, const Vertex& in, ClipVertex& out);
+// The normal part: MV's upper 3x3 times the normal, renormalised.
+Vec3u transform_normal(const Mat4& mv, const Vertex& in);
+// True when transform_position succeeds for every vertex whose coordinates are at most
+// coordinate_bound in magnitude (raw Q15.16): a bound through the matrices' absolute rows, so
+// that a draw need not transform every position twice to be refused before it writes anything.
+// False says nothing (the draw then checks vertex by vertex).
+bool transform_cannot_fail(const Mat4& mv, const Mat4& proj, std::uint32_t coordinate_bound);
 
 // Clip planes, in homogeneous space (before the divide): the near plane z >= -w, w >= 2^-12,
 // and a guard band |x| <= 64 w, |y| <= 64 w that bounds screen coordinates (raster.hpp) without
@@ -39,6 +46,12 @@ struct ClipResult {
   int count = 0;         // vertices of the clipped convex polygon (0: rejected)
   bool clipped = false;  // some plane cut the triangle
 };
+// Where a triangle lies against the clip planes: all three vertices inside every plane, all
+// three outside one plane (rejected), or crossing (clipped by clip_crossing).
+enum class ClipClass { kInside, kOutside, kCrossing };
+ClipClass classify(const ClipVertex in[3]);
+// The polygon of a crossing triangle (0 vertices when nothing is left of it).
+int clip_crossing(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]);
 // Sutherland-Hodgman. An edge is always cut from its inside endpoint towards its outside one,
 // so two triangles sharing an edge produce bit-identical new vertices (no cracks).
 ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]);

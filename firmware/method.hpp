@@ -29,6 +29,15 @@ struct ShadeVertex {
   std::int32_t sy = 0;  // screen y in 1/16 pixel, row 0 at the top
   std::int64_t z = 0;   // NDC z = z_clip / w, 30 fraction bits, clamped to [-2, 2]
   q15_16 w;             // clip w (> 0 after clipping)
+  // The vertex's index in the draw's vertex buffer, for the per-vertex caches; -1 for a vertex
+  // that clipping made (it belongs to no other triangle).
+  std::int32_t id = -1;
+};
+
+// A vertex's lit colour, cached for the draw by the methods that light vertices (Gouraud): each
+// channel's Blinn-Phong radiance clamped to [0, 1] in Q.30; c[0] < 0 while not yet lit.
+struct VertexLevels {
+  std::int32_t c[3];
 };
 
 // A triangle ready for rasterization: area2 > 0 (vertex order fixed up by the pipeline, so the
@@ -37,6 +46,9 @@ struct Triangle {
   ShadeVertex v[3];
   std::int64_t area2 = 0;  // twice the signed screen area in (1/16 pixel)^2, > 0
   bool front_facing = true;
+  // The draw's lit-vertex cache, indexed by ShadeVertex::id, for the methods whose
+  // kLightsVertices is true (device.cpp gives them a region; null for the others).
+  VertexLevels* levels = nullptr;
 };
 
 // Edge function of the directed edge a->b at subpixel point (px, py): exact, and for a triangle
@@ -73,6 +85,10 @@ struct ShadeContext {
   LightState lights[kMaxLights];
   EyeMode eye = EyeMode::kInfinite;
   Counters* counters = nullptr;
+  // Raised by every successful set_material, set_light and set_eye: a method that caches values
+  // of the shading state across triangles and draws compares this, not the state's bytes
+  // (64 bits: it does not wrap).
+  std::uint64_t revision = 0;
 };
 
 class ShadingMethod {

@@ -25,6 +25,8 @@ class FlatMethod final : public ShadingMethod {
 //    one addition per channel per pixel.
 class GouraudMethod final : public ShadingMethod {
  public:
+  // Lights each vertex once per draw, through the triangle's VertexLevels cache.
+  static constexpr bool kLightsVertices = true;
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
 

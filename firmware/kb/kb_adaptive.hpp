@@ -20,7 +20,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "firmware/kb/kb_quadratic.hpp"
 #include "firmware/kb/kb_sample.hpp"
@@ -198,20 +197,13 @@ class KbAdaptiveMethod final : public ShadingMethod {
     std::uint32_t hash_first[3] = {0, 0, 0}, hash_second[3] = {0, 0, 0};
   };
   EdgeKeys edge_;  // the current triangle's (prepare_edge_keys)
-  // The shading state the memo's values belong to.
+  // The shading state the memo's values belong to: its revision (ShadeContext::revision).
   struct MemoContext {
-    MaterialCmd material{};
-    LightState lights[kMaxLights]{};
-    EyeMode eye = EyeMode::kInfinite;
+    std::uint64_t revision = 0;
     bool valid = false;
-    bool same(const ShadeContext& c) const {
-      return valid && c.eye == eye && std::memcmp(&material, &c.material, sizeof material) == 0 &&
-             std::memcmp(lights, c.lights, sizeof lights) == 0;
-    }
+    bool same(const ShadeContext& c) const { return valid && c.revision == revision; }
     void take(const ShadeContext& c) {
-      material = c.material;
-      for (std::size_t i = 0; i < kMaxLights; ++i) lights[i] = c.lights[i];
-      eye = c.eye;
+      revision = c.revision;
       valid = true;
     }
   };

@@ -116,7 +116,45 @@ class PointShader {
     const int step_bits =
         static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
     steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
-    if (steppable_) {
+    planes_ready_ = false;  // formed by the first span_stepper: a sampled triangle needs none
+  }
+
+  // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
+  // the triangle's scale) are linear in screen x and y, so they start each span from the
+  // triangle's planes and step along it by additions, exactly, and N·L, N·E, L·E and N·H are
+  // cosines between them and the unit light directions (no unit vector is formed: one
+  // reciprocal root per vector, and one for |L + E|). Directional lights only (steppable()): a
+  // point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
+  struct SpanStepper {
+    std::int64_t n[3] = {0, 0, 0}, p[3] = {0, 0, 0};
+  };
+  bool steppable() const { return steppable_; }
+  // At the centre of pixel (x, y) of a span. The planes are kept modulo 2^64 (unsigned: their
+  // value at the screen's origin may not fit), and the value at a pixel inside the triangle,
+  // below 2^61, comes out exact.
+  SpanStepper span_stepper(std::int32_t x, std::int32_t y) const {
+    if (!planes_ready_) prepare_planes();
+    const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x));
+    const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y));
+    SpanStepper st;
+    for (int j = 0; j < 3; ++j) {
+      st.n[j] = static_cast<std::int64_t>(normal_plane_[0][j] + ux * normal_plane_[1][j] +
+                                          uy * normal_plane_[2][j]);
+      st.p[j] = static_cast<std::int64_t>(eye_plane_[0][j] + ux * eye_plane_[1][j] +
+                                          uy * eye_plane_[2][j]);
+    }
+    return st;
+  }
+
+ private:
+  // The stepped path's planes and cuts, once per triangle that has per-pixel spans (setup
+  // decided steppable_; the values depend on the triangle alone, so when they are formed does
+  // not change a bit).
+  void prepare_planes() const {
+    const Triangle& tri = *tri_;
+    const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
+    const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
+    {
       std::uint64_t max_normal = 0, max_eye = 0;
       for (int i = 0; i < 3; ++i) {
         const ShadeVertex& v = tri.v[i];
@@ -136,33 +174,10 @@ class PointShader {
       normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
       eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
     }
+    planes_ready_ = true;
   }
 
-  // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
-  // the triangle's scale) are linear in screen x and y, so they start each span from the
-  // triangle's planes and step along it by additions, exactly, and N·L, N·E, L·E and N·H are
-  // cosines between them and the unit light directions (no unit vector is formed: one
-  // reciprocal root per vector, and one for |L + E|). Directional lights only (steppable()): a
-  // point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
-  struct SpanStepper {
-    std::int64_t n[3] = {0, 0, 0}, p[3] = {0, 0, 0};
-  };
-  bool steppable() const { return steppable_; }
-  // At the centre of pixel (x, y) of a span. The planes are kept modulo 2^64 (unsigned: their
-  // value at the screen's origin may not fit), and the value at a pixel inside the triangle,
-  // below 2^61, comes out exact.
-  SpanStepper span_stepper(std::int32_t x, std::int32_t y) const {
-    const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x));
-    const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y));
-    SpanStepper st;
-    for (int j = 0; j < 3; ++j) {
-      st.n[j] = static_cast<std::int64_t>(normal_plane_[0][j] + ux * normal_plane_[1][j] +
-                                          uy * normal_plane_[2][j]);
-      st.p[j] = static_cast<std::int64_t>(eye_plane_[0][j] + ux * eye_plane_[1][j] +
-                                          uy * eye_plane_[2][j]);
-    }
-    return st;
-  }
+ public:
   // To the next pixel in x (|n| and |p| stay below 2^62 one pixel past the span's end).
   void step(SpanStepper& st) const {
     for (int j = 0; j < 3; ++j) {
@@ -394,7 +409,7 @@ class PointShader {
 
   // The edge functions k_i are exact linear functions of the subpixel position, so n and p are
   // too: their value at pixel (0, 0) and their changes per pixel in x and in y (16 subpixels).
-  void set_planes(const Triangle& tri) {
+  void set_planes(const Triangle& tri) const {
     const Lambdas origin = lambdas_at(tri, 8, 8);
     const Lambdas dx = lambdas_step_x(tri);
     const std::int64_t dy[3] = {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
@@ -451,13 +466,15 @@ class PointShader {
   const ShadeContext* ctx_ = nullptr;
   bool skipping_ = true;
   bool steppable_ = false;
-  std::int64_t weighted_normal_[3][3] = {};  // r_i·N_i, scaled by 2^-bits(area2)
-  std::int64_t weighted_eye_[3][3] = {};     // r_i·P_i, likewise
+  // The stepped path's state, formed on the first span_stepper of a triangle (prepare_planes).
+  mutable bool planes_ready_ = false;
+  mutable std::int64_t weighted_normal_[3][3] = {};  // r_i·N_i, scaled by 2^-bits(area2)
+  mutable std::int64_t weighted_eye_[3][3] = {};     // r_i·P_i, likewise
   // The planes of n and p over the screen: [0] at the centre of pixel (0, 0), [1] per pixel in
   // x, [2] per row, modulo 2^64; the x steps again as signed values.
-  std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};
-  std::int64_t normal_step_[3] = {0, 0, 0}, eye_step_[3] = {0, 0, 0};
-  int normal_cut_ = 0, eye_cut_ = 0;
+  mutable std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};
+  mutable std::int64_t normal_step_[3] = {0, 0, 0}, eye_step_[3] = {0, 0, 0};
+  mutable int normal_cut_ = 0, eye_cut_ = 0;
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30

@@ -245,8 +245,13 @@ TEST(Commands, MemoryRequiredIsExactPerMethod) {
   const std::size_t buffers = align8(64 * sizeof(Vertex)) + align8(64 * sizeof(ClipVertex)) +
                               align8(192 * 4) + align8(pixels * 2) + align8(pixels * 4) +
                               align8(160 * sizeof(Rgb8));
-  EXPECT_EQ(Device::memory_required(vp, cap, Method::kGouraud),
-            buffers + align8(Device::method_bytes(Method::kGouraud)));
+  // Gouraud lights each vertex once per draw: its lit-vertex cache, one VertexLevels per vertex;
+  // the other methods have none.
+  EXPECT_EQ(
+      Device::memory_required(vp, cap, Method::kGouraud),
+      buffers + align8(64 * sizeof(VertexLevels)) + align8(Device::method_bytes(Method::kGouraud)));
+  EXPECT_EQ(Device::memory_required(vp, cap, Method::kFlat),
+            buffers + align8(Device::method_bytes(Method::kFlat)));
 }
 
 TEST(Commands, TinyMemoryNeverCrashes) {

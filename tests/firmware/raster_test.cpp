@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <random>
 
 #include "helpers.hpp"
@@ -321,6 +322,56 @@ TEST(Cover, EdgesThroughPixelCentresFollowTopLeft) {
       const int expected = (x >= 2 && x < 10 && y >= 2 && y < 10) ? 1 : 0;
       EXPECT_EQ(rig.count(x, y), expected) << x << "," << y;
     }
+}
+
+// The draw skips its per-vertex validation pass where transform_cannot_fail proves that every
+// position transforms: the proof must hold at the worst vertices of the bound, the corners of
+// the box |x|, |y|, |z| <= bound (a linear map's largest components are there), for random
+// matrices of every scale; and it must hold for an ordinary camera, else it saves nothing.
+TEST(Transform, CannotFailIsABoundOnEveryVertexInTheBox) {
+  std::mt19937_64 rng(20261202);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> matrix_scale(-3, 3), coordinate_scale(-4, 13);
+  long proven = 0, refused = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    // Scales drawn per matrix and per bound, so that the eye and clip coordinates land on both
+    // sides of Q15.16's limit.
+    Mat4 mv, proj;
+    for (Mat4* m : {&mv, &proj}) {
+      const double e = std::ldexp(1.0, matrix_scale(rng));
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) m->m[c][r] = q16(unit(rng) * e);
+    }
+    const auto bound = static_cast<std::uint32_t>(std::ldexp(1.0, 16 + coordinate_scale(rng)) *
+                                                  (0.5 + 0.25 * (unit(rng) + 1.0)));
+    if (!transform_cannot_fail(mv, proj, bound)) {
+      ++refused;
+      continue;
+    }
+    ++proven;
+    const std::int32_t b = static_cast<std::int32_t>(bound);
+    for (int corner = 0; corner < 8; ++corner) {
+      Vertex v{};
+      v.position =
+          Vec3q16{q15_16::from_raw(corner & 1 ? b : -b), q15_16::from_raw(corner & 2 ? b : -b),
+                  q15_16::from_raw(corner & 4 ? b : -b)};
+      ClipVertex out;
+      ASSERT_TRUE(transform_position(mv, proj, v, out))
+          << "trial " << trial << " corner " << corner;
+    }
+  }
+  std::printf("transform_cannot_fail: %ld proven, %ld left to the per-vertex check\n", proven,
+              refused);
+  EXPECT_GT(proven, 1000);
+  EXPECT_GT(refused, 1000);
+  // The teapot's camera: coordinates up to 4, 30 degrees of perspective, 5 units away.
+  const glm::dmat4 view = glm::lookAt(glm::dvec3(0, 2, 8), glm::dvec3(0), glm::dvec3(0, 1, 0));
+  const glm::dmat4 persp = glm::perspective(glm::radians(30.0), 4.0 / 3.0, 0.1, 100.0);
+  EXPECT_TRUE(transform_cannot_fail(to_mat4(view), to_mat4(persp), 4u << 16));
+  // The matrix of Commands.BadIndexAndTransformOverflowRefuseTheDraw is not proven.
+  Mat4 big = to_mat4(glm::dmat4(1));
+  for (int c = 0; c < 4; ++c) big.m[c][0] = q16(16000);
+  EXPECT_FALSE(transform_cannot_fail(big, to_mat4(glm::dmat4(1)), 46341));
 }
 
 }  // namespace

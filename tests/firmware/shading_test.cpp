@@ -209,6 +209,99 @@ TEST(Shading, PhongOrthographicEyeAtInfinityHighExponent) {
   expect_close(compare(Method::kPhong, s, glm::dmat4(1), ortho, false), 0.20);
 }
 
+// Gouraud lights each vertex once per draw (the draw's lit-vertex cache, docs/CONVENTIONS.md
+// "Memory"), and afresh in the next draw: two triangles sharing an edge cost four evaluations, not
+// six; a light changed between two draws reaches the second one exactly as it reaches a fresh
+// device.
+TEST(Shading, GouraudLightsEachVertexOncePerDraw) {
+  Mesh quad;
+  quad.positions = {{-1, -0.9, 0}, {1, -0.9, 0}, {1, 0.9, 0}, {-1, 0.9, 0}};
+  for (const dvec3& p : quad.positions)
+    quad.normals.push_back(glm::normalize(0.6 * p + dvec3(0, 0, 1)));
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  const auto render = [&](Rig& rig, const Scene& s) {
+    configure(rig.dev, s, kView, kPerspective);
+    EXPECT_EQ(rig.dev.set_method(Method::kGouraud), Error::kOk);
+    EXPECT_EQ(rig.dev.clear(Rgb8{0, 0, 0}), Error::kOk);
+    EXPECT_EQ(rig.load(quad), Error::kOk);
+    EXPECT_EQ(rig.draw_all(quad), Error::kOk);
+  };
+  Rig a(96, 80);
+  const Scene first = point_light_scene();
+  render(a, first);
+  EXPECT_EQ(a.dev.counters().triangles_drawn, 2u);
+  EXPECT_EQ(a.dev.counters().lighting_evaluations, 4u);
+  EXPECT_EQ(a.draw_all(quad), Error::kOk);  // the same draw again: lit again, once per vertex
+  EXPECT_EQ(a.dev.counters().lighting_evaluations, 8u);
+
+  Scene second = first;
+  second.lights[0].colour = {0.3, 0.9, 0.5};
+  second.lights[0].v += dvec3(0.5, -0.25, 0.0);
+  render(a, second);
+  Rig fresh(96, 80);
+  render(fresh, second);
+  long differing = 0, lit = 0;
+  for (std::uint32_t y = 0; y < 80; ++y)
+    for (std::uint32_t x = 0; x < 96; ++x) {
+      const Rgb8 p = a.pixel(x, y), q = fresh.pixel(x, y);
+      differing += (p.r != q.r || p.g != q.g || p.b != q.b) ? 1 : 0;
+      lit += a.count(x, y) > 0 ? 1 : 0;
+    }
+  EXPECT_GT(lit, 1000);
+  EXPECT_EQ(differing, 0);
+}
+
+// Caches that outlive a draw (kb-adaptive's boundary samples, keyed on ShadeContext::revision)
+// or a triangle (Gouraud's lit vertices) must follow a light, material or eye changed between
+// two draws: for every method, a sphere rendered after the change equals the same sphere on a
+// fresh device. (A re-sent scene would not test this: its viewport command rebuilds the method.)
+TEST(Shading, CachesFollowAChangedLightMaterialOrEye) {
+  const Mesh sphere = octasphere(1, 0.9);  // triangles of a few hundred pixels: sampled
+  const Method methods[] = {Method::kFlat,
+                            Method::kGouraud,
+                            Method::kPhong,
+                            Method::kKuijkBlake,
+                            Method::kKuijkBlakeNoSkip,
+                            Method::kKuijkBlakeDecomposition,
+                            Method::kKuijkBlakeExact,
+                            Method::kKuijkBlakeAdaptive,
+                            Method::kKuijkBlakeAdaptiveNoSkip,
+                            Method::kKuijkBlakeAdaptiveExact};
+  const Scene first = point_light_scene();
+  // Light colours and material only: the same lights where N·L changes sign, so that a stale
+  // memo entry would match its key (a moved or added light changes that set, and with it the
+  // key). Then moved and added lights, the exponent and the eye.
+  Scene second = first;
+  for (Light& l : second.lights) l.colour = dvec3(0.9, 0.5, 0.2) * l.colour;
+  second.ks = 0.7;
+  second.colour = dvec3(0.4, 0.9, 0.7);
+  Scene third = second;
+  third.lights[0].v = dvec3(-1.5, 1.0, 2.0);
+  third.lights.push_back({false, glm::normalize(dvec3(0.3, 0.8, 0.5)), {0.6, 0.6, 0.9}});
+  third.n = 60;
+  third.finite_eye = !first.finite_eye;
+  const auto render = [&](Rig& rig, const Scene& s, Method m) {
+    configure(rig.dev, s, kView, kPerspective);
+    EXPECT_EQ(rig.dev.set_method(m), Error::kOk);
+    EXPECT_EQ(rig.dev.clear(Rgb8{0, 0, 0}), Error::kOk);
+    EXPECT_EQ(rig.draw_all(sphere), Error::kOk);
+    const FramebufferView fb = rig.dev.framebuffer();
+    return std::vector<std::uint8_t>(fb.data, fb.data + std::size_t{fb.stride} * fb.height);
+  };
+  for (const Method m : methods) {
+    Rig reused(160, 120), fresh(160, 120);
+    ASSERT_EQ(reused.load(sphere), Error::kOk);
+    ASSERT_EQ(fresh.load(sphere), Error::kOk);
+    const auto before = render(reused, first, m);
+    for (const Scene* s : {&second, &third}) {
+      const auto after = render(reused, *s, m);
+      const auto expected = render(fresh, *s, m);
+      EXPECT_FALSE(before == expected) << static_cast<int>(m) << ": the change must show";
+      EXPECT_TRUE(after == expected) << static_cast<int>(m);
+    }
+  }
+}
+
 TEST(Shading, PowerByRepeatedSquaring) {
   // x^n against the double power of the same (rounded) input. Measured worst 4.63e-08
   // (~2^-24.4) over this sweep; pinned at 2^-22 (5x margin).

@@ -146,6 +146,9 @@ class Random {
       area2 = -area2;
     }
     sc.tri.area2 = area2;
+    // A new shading state, as the device's set_material / set_light would raise it: the
+    // method's boundary memo must not serve a previous scenario's samples.
+    sc.ctx.revision = ++revision_;
     MaterialCmd& m = sc.ctx.material;
     for (q1_30& c : m.color) c = q30(uniform(0, 1));
     m.ka = q30(uniform(0, 0.3));
@@ -170,6 +173,7 @@ class Random {
 
  private:
   std::mt19937 rng_;
+  std::uint64_t revision_ = 0;
 };
 
 // Shades every span with the method and compares each pixel with the exact evaluation.
