@@ -45,8 +45,8 @@ struct Radiance {
 // x^n by repeated squaring, x in [0, 1] (q1_30; every caller clamps, a dot of unit vectors may
 // exceed 1 by a few LSB), n >= 1; each product rounded to q1_30, half up. For such x that is the
 // rounding of fx::mul_sat (ties away from zero = half up for non-negative values) without its
-// saturation, which no product reaches (x^n < 2). Inline: kb-adaptive takes it at every sample
-// and exact pixel (kb/kb_sample.hpp).
+// saturation, which no product reaches (x^n < 2). Inline: exact Phong and kb-adaptive take it at
+// every exact pixel and sample (point_shader.hpp).
 //
 // The first product of the result, 1·x^(2^k), is exact ((2^30·b + 2^29) >> 30 = b), so it is
 // taken as is: the same value with one multiplication and test less.

@@ -6,6 +6,7 @@
 #include "firmware/interp.hpp"
 #include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
+#include "firmware/point_shader.hpp"
 
 namespace tp::fw {
 
@@ -35,20 +36,19 @@ class GouraudMethod final : public ShadingMethod {
   ScreenPlane plane_[3];
 };
 
-// 3. Phong, exact (shade_phong.cpp): per pixel, the normal and the eye-space position are
-//    interpolated perspective-correctly (hyperbolic barycentrics, like the double reference),
-//    the normal renormalised by the fixed-point rsqrt, L and H recomputed for point lights and
-//    a finite eye, and the power taken by repeated squaring.
+// 3. Phong, exact (shade_phong.cpp): Blinn-Phong at every pixel, at the perspective-correct
+//    point (normal and eye-space position interpolated with hyperbolic barycentrics, like the
+//    double reference), the normal renormalised, L, the eye direction and H exact there, the
+//    power by repeated squaring: PointShader (point_shader.hpp), with one reciprocal root per
+//    direction instead of a normalised vector, and along a row by exact integer steps.
 class PhongMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
 
  private:
-  const Triangle* tri_ = nullptr;
-  const ShadeContext* ctx_ = nullptr;
-  PerspectiveBary bary_;
-  Lambdas step_{};
+  PointShader point_;
+  Counters* counters_ = nullptr;
 };
 
 }  // namespace tp::fw

@@ -9,8 +9,8 @@
 //   exact — per pixel, on triangles under 64 pixels (their samples would cost more), on
 //     triangles with fewer pixels than refining would take samples, and on deepest-level cells
 //     that still miss.
-// The exact evaluation (kb_sample.hpp) is Blinn-Phong at the perspective-correct point, and the
-// budget bounds the difference from it: every pixel of a cheap path within kBudgetLevels.
+// The exact evaluation (firmware/point_shader.hpp) is Blinn-Phong at the perspective-correct point,
+// and the budget bounds the difference from it: every pixel of a cheap path within kBudgetLevels.
 //
 // The error estimate (docs/KUIJK-BLAKE.md): the quadratic is compared with exact values at the
 // nine other points of the quarter lattice (the children's samples, so refining reuses them), and
@@ -22,8 +22,8 @@
 #include <cstdint>
 
 #include "firmware/kb/kb_quadratic.hpp"
-#include "firmware/kb/kb_sample.hpp"
 #include "firmware/method.hpp"
+#include "firmware/point_shader.hpp"
 
 namespace tp::fw::kb {
 

@@ -79,8 +79,9 @@ void KbAdaptiveMethod::find_terminators(const Triangle& tri) {
         worst = w > worst ? w : worst;
       }
       // The unclamped diffuse may take the sampled colour below 0 by the terminators' weights
-      // together: they stay within 1785 levels, inside the samples' range (kb_sample.hpp), so
-      // that no sample is cut and the per-pixel clamp restores the exact sum.
+      // together: they stay within 1785 levels, inside the samples' range
+      // (firmware/point_shader.hpp), so that no sample is cut and the per-pixel clamp restores the
+      // exact sum.
       if (worst == 0 || total + worst > (std::int64_t{1785} << kSampleFrac)) continue;
       total += worst;
       term_worst_[terminators_] = worst;

@@ -10,9 +10,10 @@
 //   c_uv = 4 (g_A − g_AB − g_CA + g_BC)
 // (substitution: q(1, 0) = g_B, q(½, 0) = g_AB, q(½, ½) = g_BC, …; tests/kb/test_kb_quadratic.cpp).
 //
-// Formats: samples are 8-bit output levels in Q.14 (|g| < 2^25, unclamped: kb_sample.hpp); the span
-// state is levels in Q.40 (kStateFrac), so that 4,096 steps of a rounded second difference stay far
-// below 1/256 of a level; (u, v) and their per-pixel steps are Q.30 in 64-bit words.
+// Formats: samples are 8-bit output levels in Q.14 (|g| < 2^25, unclamped:
+// firmware/point_shader.hpp); the span state is levels in Q.40 (kStateFrac), so that 4,096 steps of
+// a rounded second difference stay far below 1/256 of a level; (u, v) and their per-pixel steps are
+// Q.30 in 64-bit words.
 #pragma once
 
 #include <array>

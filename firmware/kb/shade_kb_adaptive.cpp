@@ -646,26 +646,11 @@ Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {
   return px;
 }
 
-// Per pixel: the exact evaluation at every pixel centre of [xa, xa + n) in row y — stepped along
-// the row where PointShader can (directional lights, area2 < 2^30: exact integer steps, so a
-// pixel gets the same value whichever span piece it starts), else formed at each pixel.
+// Per pixel: the exact evaluation at every pixel centre of [xa, xa + n) in row y
+// (PointShader::shade_pixels, the same pixels as exact Phong's).
 void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n,
                                    Rgb8* out) const {
-  const auto level = [](std::int32_t v) {
-    return quad_level(std::int64_t{v} * (std::int64_t{1} << (kQuadStateFrac - kSampleFrac)));
-  };
-  if (point_.steppable()) {
-    point_.shade_run(point_.span_stepper(xa, y), n, out);
-  } else {
-    std::int32_t g[3];
-    Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
-    const Lambdas step = lambdas_step_x(*tri_);
-    for (std::int32_t x = 0; x < n; ++x) {
-      point_.at(lam.l[0], lam.l[1], lam.l[2], g);
-      out[x] = Rgb8{level(g[0]), level(g[1]), level(g[2])};
-      for (int i = 0; i < 3; ++i) lam.l[i] += step.l[i];
-    }
-  }
+  point_.shade_pixels(y, xa, n, out);
   counters_->specular_evaluations += static_cast<std::uint64_t>(n);
 }
 

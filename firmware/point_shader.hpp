@@ -1,10 +1,11 @@
-// kb-adaptive's exact evaluation at a point of a triangle: the samples its quadratics are fitted
-// to, and its per-pixel path. The same Blinn-Phong as firmware/lighting.hpp (specular not gated
-// by N·L, Ia = 1) at the perspective-correct point: normal and eye-space position interpolated
-// with hyperbolic barycentrics, the normal renormalised, L, the eye direction and H exact there
-// (so that near point lights are right), with the sample-grade normalize_fast (2.8·10^-9 per
-// component; fixedpoint/normalize_fast.hpp) instead of normalize's four 128-bit Newton steps.
-// The result is the 8-bit output level in Q.14 before the output's clamp to [0, 255].
+// The exact per-pixel evaluation at a point of a triangle: exact Phong's pixels (shade_phong.cpp),
+// and kb-adaptive's samples (the values its quadratics are fitted to) and per-pixel path. The same
+// Blinn-Phong as firmware/lighting.hpp (specular not gated by N·L, Ia = 1) at the
+// perspective-correct point: normal and eye-space position interpolated with hyperbolic
+// barycentrics, the normal renormalised, L, the eye direction and H exact there (so that near point
+// lights are right), with the sample-grade normalize_fast (2.8·10^-9 per component;
+// fixedpoint/normalize_fast.hpp) instead of normalize's four 128-bit Newton steps. The result is
+// the 8-bit output level in Q.14 before the output's clamp to [0, 255].
 #pragma once
 
 #include <bit>
@@ -16,7 +17,7 @@
 #include "fixedpoint/arith.hpp"
 #include "fixedpoint/normalize_fast.hpp"
 
-namespace tp::fw::kb {
+namespace tp::fw {
 
 // a·b of two vectors of magnitude <= 1 + 2^-28 (Q1.30), rounded half away from zero: the same
 // value as fx::dot<q1_30> (the exact sum, |.| < 3·2^60, fits 64 bits; no saturation is possible),
@@ -189,6 +190,28 @@ class PointShader {
   // that the triangle's state stays in registers (the same values as one call per pixel).
   void shade_run(SpanStepper st, std::int32_t n, Rgb8* out) const {
     for (std::int32_t x = 0; x < n; ++x, step(st)) out[x] = shade_stepped(st);
+  }
+  // The n pixels of row y from x = xa: stepped along the row where the triangle allows it
+  // (steppable(): exact integer steps, so a pixel gets the same value whichever run it starts),
+  // else the point formed at each pixel. The same bits either way a run is cut.
+  void shade_pixels(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
+    if (steppable_) {
+      shade_run(span_stepper(xa, y), n, out);
+      return;
+    }
+    std::int32_t g[3];
+    Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
+    const Lambdas step = lambdas_step_x(*tri_);
+    for (std::int32_t x = 0; x < n; ++x) {
+      at(lam.l[0], lam.l[1], lam.l[2], g);
+      out[x] = Rgb8{pixel_level(g[0]), pixel_level(g[1]), pixel_level(g[2])};
+      for (int i = 0; i < 3; ++i) lam.l[i] += step.l[i];
+    }
+  }
+  // A Q.14 level rounded half up to an integer and clamped to [0, 255].
+  static std::uint8_t pixel_level(std::int32_t q14) {
+    const std::int32_t l = (q14 + (1 << (kFrac - 1))) >> kFrac;
+    return l < 0 ? std::uint8_t{0} : (l > 255 ? std::uint8_t{255} : static_cast<std::uint8_t>(l));
   }
   // The output colour at the stepper's pixel: level_of's Q.14 level, rounded to an integer and
   // clamped to [0, 255] (kb_quadratic.hpp's quad_level), in one step.
@@ -489,4 +512,4 @@ class PointShader {
   int lights_ = 0;
 };
 
-}  // namespace tp::fw::kb
+}  // namespace tp::fw
