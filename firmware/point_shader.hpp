@@ -86,13 +86,10 @@ class PointShader {
     }
     update_spec_zero(m);
     lights_ = 0;
-    bool point_light = false;
+    point_lights_ = false;
     for (std::size_t i = 0; i < kMaxLights; ++i) {
       const LightState& l = ctx.lights[i];
       if (l.type == LightType::kOff) continue;
-      // (A dark point light still rules the stepped path out, so that the skipping and the
-      // non-skipping variants take the same route: the same bits.)
-      point_light = point_light || l.type == LightType::kPoint;
       const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
       if (skipping && dark) continue;  // adds exactly 0
       white_[lights_] = l.color[0].raw() == kUnitIntensity && l.color[1].raw() == kUnitIntensity &&
@@ -103,12 +100,13 @@ class PointShader {
         h_[lights_] =
             fx::normalize_fast(std::int64_t{l.direction.x.raw()}, std::int64_t{l.direction.y.raw()},
                                std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
+      point_lights_ = point_lights_ || l.type == LightType::kPoint;
       light_[lights_++] = &l;
     }
-    // The stepped per-pixel evaluation (SpanStepper): directional lights only, and a triangle
-    // small enough that its weights keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled
-    // by 2^-bits(area2) so that Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0,
-    // Σ k_i = area2).
+    // The stepped per-pixel evaluation (SpanStepper): a triangle small enough that its weights
+    // keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled by 2^-bits(area2) so that
+    // Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0, Σ k_i = area2), and each point
+    // light's r_i·(L − P_i) by 2^-(bits(area2) + 2), below 2^60 inside.
     // The per-pixel steps dk_i·(.) must fit as well: |dk_i| < 2^bits(area2), which only slivers
     // (long edges around a small area) fail; they keep the per-pixel weights.
     const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
@@ -116,18 +114,23 @@ class PointShader {
     const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
     const int step_bits =
         static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
-    steppable_ = !point_light && tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
+    steppable_ = tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
     planes_ready_ = false;  // formed by the first span_stepper: a sampled triangle needs none
   }
 
   // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
   // the triangle's scale) are linear in screen x and y, so they start each span from the
   // triangle's planes and step along it by additions, exactly, and N·L, N·E, L·E and N·H are
-  // cosines between them and the unit light directions (no unit vector is formed: one
-  // reciprocal root per vector, and one for |L + E|). Directional lights only (steppable()): a
-  // point light's L needs Σ k_i r_i at the scale of p, beyond 64 bits here.
+  // cosines between them and the light directions (no unit vector is formed: one reciprocal
+  // root per vector, and one for |L + E|). A point light's direction is that of
+  // v = Σ k_i r_i (L − P_i), a plane of its own (the point's s·L − s·P without forming s).
   struct SpanStepper {
     std::int64_t n[3] = {0, 0, 0}, p[3] = {0, 0, 0};
+  };
+  // The point lights' v, by light_[] index (entries of the other lights are not set). Apart from
+  // SpanStepper, so that a triangle lit by directional lights alone keeps n and p in registers.
+  struct LightStepper {
+    std::int64_t v[kMaxLights][3];
   };
   bool steppable() const { return steppable_; }
   // At the centre of pixel (x, y) of a span. The planes are kept modulo 2^64 (unsigned: their
@@ -145,6 +148,17 @@ class PointShader {
                                           uy * eye_plane_[2][j]);
     }
     return st;
+  }
+  // The point lights' v at the same pixel (after span_stepper, which forms the planes).
+  void start_lights(LightStepper& ls, std::int32_t x, std::int32_t y) const {
+    const auto ux = static_cast<std::uint64_t>(static_cast<std::int64_t>(x));
+    const auto uy = static_cast<std::uint64_t>(static_cast<std::int64_t>(y));
+    for (int li = 0; li < lights_; ++li) {
+      if (light_[li]->type != LightType::kPoint) continue;
+      for (int j = 0; j < 3; ++j)
+        ls.v[li][j] = static_cast<std::int64_t>(
+            light_plane_[li][0][j] + ux * light_plane_[li][1][j] + uy * light_plane_[li][2][j]);
+    }
   }
 
  private:
@@ -169,6 +183,33 @@ class PointShader {
         }
       }
       set_planes(tri);
+      // Each point light's v = Σ k_i r_i (L − P_i) (|L − P_i| < 2^32 raw, r_i <= 2^30): the
+      // weights r_i (L − P_i) shifted just enough that v stays below 2^60 inside the triangle
+      // (Σ k_i = area2 < 2^scale; 2^62 one step past a span's end), so that a light near the
+      // triangle, whose weights are small, keeps their every bit. v's length is measured at
+      // every pixel: near such a light it is far below its bound.
+      for (int li = 0; li < lights_; ++li) {
+        const LightState& l = *light_[li];
+        if (l.type != LightType::kPoint) continue;
+        const std::int64_t lp[3] = {l.position.x.raw(), l.position.y.raw(), l.position.z.raw()};
+        std::int64_t w[3][3];
+        std::uint64_t max_w = 0;
+        for (int i = 0; i < 3; ++i) {
+          const ShadeVertex& v = tri.v[i];
+          const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
+          for (int j = 0; j < 3; ++j) {
+            w[i][j] = r_[i] * (lp[j] - e[j]);
+            max_w |= mag(w[i][j]);
+          }
+        }
+        const int sh = scale + static_cast<int>(std::bit_width(max_w)) - 60;
+        if (sh > 0)
+          for (auto& row : w)
+            for (std::int64_t& x : row) x = fx::round_shift_right(x, sh);
+        plane_of(tri, w, light_plane_[li]);
+        for (int j = 0; j < 3; ++j)
+          light_step_[li][j] = static_cast<std::int64_t>(light_plane_[li][1][j]);
+      }
       // Inside the triangle n and p are convex combinations of area2·(r_i N_i) and area2·(r_i P_i)
       // (k_i >= 0, Σ k_i = area2): every component below 2^(bits(area2) + bits(max)). One cut
       // for the whole triangle brings them to 30 bits, instead of measuring every pixel's.
@@ -179,24 +220,42 @@ class PointShader {
   }
 
  public:
-  // To the next pixel in x (|n| and |p| stay below 2^62 one pixel past the span's end).
+  // To the next pixel in x (|n|, |p| and the point lights' |v| stay below 2^62 one pixel past
+  // the span's end).
   void step(SpanStepper& st) const {
     for (int j = 0; j < 3; ++j) {
       st.n[j] += normal_step_[j];
       st.p[j] += eye_step_[j];
     }
   }
+  void step(LightStepper& ls) const {
+    for (int li = 0; li < lights_; ++li)
+      if (light_[li]->type == LightType::kPoint)
+        for (int j = 0; j < 3; ++j) ls.v[li][j] += light_step_[li][j];
+  }
   // The n pixels of a span from the stepper's: shade_stepped at each, inlined into the loop so
   // that the triangle's state stays in registers (the same values as one call per pixel).
-  void shade_run(SpanStepper st, std::int32_t n, Rgb8* out) const {
-    for (std::int32_t x = 0; x < n; ++x, step(st)) out[x] = shade_stepped(st);
+  // kPoint: some light is a point light (ls then holds their v).
+  template <bool kPoint>
+  void shade_run(SpanStepper st, LightStepper* ls, std::int32_t n, Rgb8* out) const {
+    for (std::int32_t x = 0; x < n; ++x, step(st)) {
+      out[x] = shade_stepped<kPoint>(st, ls);
+      if constexpr (kPoint) step(*ls);
+    }
   }
   // The n pixels of row y from x = xa: stepped along the row where the triangle allows it
   // (steppable(): exact integer steps, so a pixel gets the same value whichever run it starts),
   // else the point formed at each pixel. The same bits either way a run is cut.
   void shade_pixels(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
+    if (steppable_ && !point_lights_) {
+      shade_run<false>(span_stepper(xa, y), nullptr, n, out);
+      return;
+    }
     if (steppable_) {
-      shade_run(span_stepper(xa, y), n, out);
+      const SpanStepper st = span_stepper(xa, y);
+      LightStepper ls;
+      start_lights(ls, xa, y);
+      shade_run<true>(st, &ls, n, out);
       return;
     }
     std::int32_t g[3];
@@ -215,7 +274,8 @@ class PointShader {
   }
   // The output colour at the stepper's pixel: level_of's Q.14 level, rounded to an integer and
   // clamped to [0, 255] (kb_quadratic.hpp's quad_level), in one step.
-  [[gnu::always_inline]] Rgb8 shade_stepped(const SpanStepper& st) const {
+  template <bool kPoint>
+  [[gnu::always_inline]] Rgb8 shade_stepped(const SpanStepper& st, const LightStepper* ls) const {
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
     const bool finite = ctx_->eye == EyeMode::kFinite;
     const CutVector n = cut_vector(st.n, normal_cut_);
@@ -224,17 +284,26 @@ class PointShader {
     const std::int64_t normal_eye = finite ? -cosine(n, e) : over_length(n.c[2], n);  // N·E
     for (int li = 0; li < lights_; ++li) {
       const LightState& l = *light_[li];
-      const std::int64_t normal_light = cosine(n, l.direction);
-      const std::int64_t ndl = normal_light > 0 ? normal_light : 0;
-      std::int64_t ndh = 0;
-      if (fixed_h_[li]) {
-        const std::int64_t d = cosine(n, h_[li]);
-        ndh = d > 0 ? d : 0;
-      } else {
-        const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
+      std::int64_t normal_light = 0, ndh = 0;
+      if (kPoint && l.type == LightType::kPoint) {
+        const std::int64_t* v = ls->v[li];
+        const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
+        const CutVector lv = cut_vector(
+            v, cut_for(static_cast<int>(std::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2])))));
+        normal_light = cosine(n, lv);
+        const std::int64_t light_eye = finite ? -cosine(e, lv) : over_length(lv.c[2], lv);
         ndh = halfway_cosine(normal_light + normal_eye, light_eye);
+      } else {
+        normal_light = cosine(n, l.direction);
+        if (fixed_h_[li]) {
+          const std::int64_t d = cosine(n, h_[li]);
+          ndh = d > 0 ? d : 0;
+        } else {
+          const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
+          ndh = halfway_cosine(normal_light + normal_eye, light_eye);
+        }
       }
-      add_light(li, ndl, ndh, acc);
+      add_light(li, normal_light > 0 ? normal_light : 0, ndh, acc);
     }
     return Rgb8{output_level(acc[0]), output_level(acc[1]), output_level(acc[2])};
   }
@@ -432,6 +501,23 @@ class PointShader {
 
   // The edge functions k_i are exact linear functions of the subpixel position, so n and p are
   // too: their value at pixel (0, 0) and their changes per pixel in x and in y (16 subpixels).
+  // The plane Σ k_i w_i over the screen of weights w (per vertex, per component): [0] at the
+  // centre of pixel (0, 0), [1] per pixel in x, [2] per row, modulo 2^64.
+  static void plane_of(const Triangle& tri, const std::int64_t w[3][3], std::uint64_t out[3][3]) {
+    const Lambdas origin = lambdas_at(tri, 8, 8);
+    const Lambdas dx = lambdas_step_x(tri);
+    const std::int64_t dy[3] = {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
+                                16 * (std::int64_t{tri.v[0].sx} - tri.v[2].sx),
+                                16 * (std::int64_t{tri.v[1].sx} - tri.v[0].sx)};
+    const std::int64_t* k[3] = {origin.l, dx.l, dy};
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 3; ++j) {
+        std::uint64_t sum = 0;
+        for (int i = 0; i < 3; ++i)
+          sum += static_cast<std::uint64_t>(k[a][i]) * static_cast<std::uint64_t>(w[i][j]);
+        out[a][j] = sum;
+      }
+  }
   void set_planes(const Triangle& tri) const {
     const Lambdas origin = lambdas_at(tri, 8, 8);
     const Lambdas dx = lambdas_step_x(tri);
@@ -466,8 +552,8 @@ class PointShader {
   // unclamped diffuse of kb-adaptive's terminators may take it below 0. Kept in [−2040, 2040]
   // levels (|g| < 2^25, the bound kb_quadratic.hpp's products assume); past +2040 the output
   // is saturated either way, and kb-adaptive keeps its terminators above −1785 levels.
-  // The clamp is counted (Counters::saturations, once per channel of a sample or point-light
-  // pixel where it fires): a saturation, not a proven range.
+  // The clamp is counted (Counters::saturations, once per channel of a sample, or of a pixel of
+  // a triangle too large to step, where it fires): a saturation, not a proven range.
   std::int32_t level_of(std::int64_t i_q30) const {
     constexpr std::int64_t lo = -(std::int64_t{8} << 30), hi = std::int64_t{8} << 30;
     const std::int64_t v = fx::clamp(i_q30, lo, hi);
@@ -498,6 +584,8 @@ class PointShader {
   mutable std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};
   mutable std::int64_t normal_step_[3] = {0, 0, 0}, eye_step_[3] = {0, 0, 0};
   mutable int normal_cut_ = 0, eye_cut_ = 0;
+  mutable std::uint64_t light_plane_[kMaxLights][3][3] = {};  // point lights' v (light_[] index)
+  mutable std::int64_t light_step_[kMaxLights][3] = {};
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30
@@ -510,6 +598,7 @@ class PointShader {
   std::int32_t spec_zero_ks_ = 0;
   Vec3u h_[kMaxLights];
   int lights_ = 0;
+  bool point_lights_ = false;  // some light_[] is a point light
 };
 
 }  // namespace tp::fw
