@@ -120,7 +120,9 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
         return fail(Error::kBadLength);
       // Validate everything first, through the typed call, in chunks on the stack (no heap):
       // a failing chunk would leave earlier chunks applied, so check all before uploading.
-      constexpr std::size_t kChunk = 64;
+      // Chunks of 8 vertices (192 bytes): 64 made this the deepest frame of a draw's stack on the
+      // Cortex-M (1.6 KB; docs/TARGET.md, "Stack").
+      constexpr std::size_t kChunk = 8;
       Vertex buf[kChunk];
       for (int pass = 0; pass < 2; ++pass) {
         if (std::uint64_t{p[0]} + p[1] > state_.capacity.max_vertices)

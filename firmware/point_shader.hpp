@@ -253,9 +253,8 @@ class PointShader {
     }
     if (steppable_) {
       const SpanStepper st = span_stepper(xa, y);
-      LightStepper ls;
-      start_lights(ls, xa, y);
-      shade_run<true>(st, &ls, n, out);
+      start_lights(light_stepper_, xa, y);
+      shade_run<true>(st, &light_stepper_, n, out);
       return;
     }
     std::int32_t g[3];
@@ -586,6 +585,9 @@ class PointShader {
   mutable int normal_cut_ = 0, eye_cut_ = 0;
   mutable std::uint64_t light_plane_[kMaxLights][3][3] = {};  // point lights' v (light_[] index)
   mutable std::int64_t light_step_[kMaxLights][3] = {};
+  // The point lights' v along the current run: a member, not a local, because its 384 bytes
+  // would be the largest frame of a draw on a small part's stack (docs/TARGET.md, "Stack").
+  mutable LightStepper light_stepper_{};
   std::int64_t r_[3] = {0, 0, 0};  // w_min / w_i, Q1.30
   std::int64_t ambient_[3] = {0, 0, 0};
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30

@@ -36,7 +36,26 @@ struct EmbeddedStream {
 extern "C" const EmbeddedStream tp_streams[];
 extern "C" const std::uint32_t tp_stream_count;
 
+extern "C" std::uint32_t __stack_limit[], __stack_top[];  // mps2.ld
+
 namespace {
+
+// The stack's high-water mark: the free stack is painted with a pattern before the streams run,
+// and afterwards the lowest word that no longer holds it bounds what every stream used (main's
+// frames and the semihosting writes included).
+constexpr std::uint32_t kStackPaint = 0x5eed5eedu;
+void paint_stack() {
+  // Everything more than 256 bytes below this frame is free.
+  const auto below = reinterpret_cast<std::uintptr_t>(__builtin_frame_address(0)) - 256;
+  for (volatile std::uint32_t* p = __stack_limit; reinterpret_cast<std::uintptr_t>(p) < below; ++p)
+    *p = kStackPaint;
+}
+std::uint32_t stack_used_bytes() {
+  const volatile std::uint32_t* p = __stack_limit;
+  while (p < __stack_top && *p == kStackPaint) ++p;
+  return static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(__stack_top) -
+                                    reinterpret_cast<std::uintptr_t>(p));
+}
 
 // The device's memory block, and the Device object itself (constructed anew per stream so
 // that each stream starts from a fresh device, as `tinyphong replay` does). Both are static:
@@ -144,8 +163,12 @@ int main() {
   timer_start();
   print_calibration();
 #endif
+  paint_stack();
   bool ok = true;
   for (std::uint32_t i = 0; i < tp_stream_count; ++i) ok = run(tp_streams[i]) && ok;
+  write("stack high-water mark ");
+  write_dec(stack_used_bytes());
+  write(" bytes\n");
   write(ok ? "done\n" : "done with errors\n");
   return ok ? 0 : 1;
 }

@@ -292,8 +292,10 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
     for (int ch = 0; ch < 3; ++ch) q[ch] = fit_quadratic(samples_of(c, ch));
     const std::int32_t* points[15];
     if (terminators_ > 0) cell_points(c, points);
-    Crossing crossing[kMaxTerminators];
+    // The crossings go straight into the pool, past its used part (committed below if they all
+    // fit): a local array of kMaxTerminators of them was 1.4 KB of a small part's stack.
     int crossings = 0;
+    bool pool_full = false;
     for (int t = 0; t < terminators_; ++t) {
       const Samples6 samples = samples_of(c, 3 + t);
       const LocalQuadratic nl = fit_quadratic(samples);
@@ -319,11 +321,16 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
         }
         continue;
       }
-      Crossing& x = crossing[crossings++];
+      if (crossing_count_ + crossings >= kMaxCrossings) {
+        pool_full = true;
+        ++crossings;
+        continue;
+      }
+      Crossing& x = crossings_[crossing_count_ + crossings++];
       x.nl = prepare_steps(nl, du, dv);
       for (int ch = 0; ch < 3; ++ch) x.weight[ch] = term_weight_[t][ch];
     }
-    if (crossings > 0 && crossing_count_ + crossings > kMaxCrossings) {
+    if (pool_full) {
       leaf.exact = true;  // the pool is full: per pixel (exact, only dearer)
       ++counters_->subtriangles_exact;
       mark(c, static_cast<std::uint16_t>(leaf_count_++));
@@ -331,7 +338,7 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
     }
     leaf.first = static_cast<std::uint16_t>(crossing_count_);
     leaf.crossing = static_cast<std::uint8_t>(crossings);
-    for (int k = 0; k < crossings; ++k) crossings_[crossing_count_++] = crossing[k];
+    crossing_count_ += crossings;
     if (crossings > 0) ++counters_->terminator_cells;
     leaf.in_range = true;
     for (int ch = 0; ch < 3; ++ch) {

@@ -3,8 +3,8 @@
 # device's hash of the same stream (`tinyphong replay --hash`).
 #   run_image.sh QEMU MACHINE IMAGE TINYPHONG TIMEOUT_S NAME=STREAM.tpcmd...
 # Each NAME must appear as "stream NAME HASH" in the image's output, in order. Prints
-# "hash mismatch: NAME ..." for each difference; exits 0 iff QEMU exited 0, printed "done" and
-# every hash matched.
+# "hash mismatch: NAME ..." for each difference; exits 0 iff QEMU exited 0, printed "done",
+# every hash matched and the stack's high-water mark is within 4 KiB.
 set -uo pipefail
 qemu=$1 machine=$2 image=$3 tp=$4 timeout_s=$5
 shift 5
@@ -19,6 +19,17 @@ if [ $status -ne 0 ]; then
   fail=1
 fi
 grep -qx "done" <<<"$out" || { echo "FAIL: the image did not print 'done'"; fail=1; }
+# The stack's high-water mark over all the streams (the image paints its free stack first):
+# issue 12's budget for a small part is 4 KiB. Measured 2,312-3,640 bytes (docs/TARGET.md).
+stack_limit=4096
+stack=$(awk '/^stack high-water mark/ { print $4 }' <<<"$out")
+if [ -z "$stack" ]; then
+  echo "FAIL: the image did not print its stack high-water mark"
+  fail=1
+else
+  echo "stack high-water mark: $stack bytes (limit $stack_limit)"
+  [ "$stack" -le "$stack_limit" ] || { echo "FAIL: stack $stack bytes > $stack_limit"; fail=1; }
+fi
 # The host's hashes of every stream, in one tinyphong run ("HASH  FILE" lines).
 streams=()
 for pair in "$@"; do streams+=("${pair#*=}"); done
