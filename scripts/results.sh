@@ -1,11 +1,21 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md: builds the release preset's tinyphong-results and runs it over
 # every paper scene (1 light, all methods) and the multi-light variants (2, 4, 8 lights).
-# Usage: bash scripts/results.sh [--reps N]   (default 5; the machine and date go in the file)
+# Usage: bash scripts/results.sh [--reps N] [--no-instructions]
+#   --reps N: rounds per measurement (default 5; the machine and date go in the file).
+#   The last section, instructions per pixel written, comes from scripts/instructions.sh
+#   (callgrind, a few minutes); --no-instructions leaves it out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reps=5
-[ "${1:-}" = "--reps" ] && reps=$2
+instructions=1
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --reps) reps=$2; shift 2 ;;
+    --no-instructions) instructions=0; shift ;;
+    *) echo "usage: $0 [--reps N] [--no-instructions]" >&2; exit 2 ;;
+  esac
+done
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)" --target tinyphong-results >/dev/null
 bin=build/release/bench/tinyphong-results
@@ -37,8 +47,8 @@ Kuijk-Blake rows in \`tests/kb/test_kb_device.cpp\`; kb-adaptive is checked agai
 its own exact evaluation (\`kb-adaptive-exact\`) on every scene in
 \`tests/kb/test_kb_adaptive_scenes.cpp\`. docs/KUIJK-BLAKE.md discusses the Kuijk-Blake columns,
 their setup share, kb-adaptive and the speed targets; instructions per pixel (a steadier cost
-figure than these times) are in docs/KUIJK-BLAKE.md ("kb-adaptive"), from
-\`bash scripts/instructions.sh\`.
+figure than these times) are in the last section, from \`bash scripts/instructions.sh\`
+(kb-adaptive's history of them in docs/KUIJK-BLAKE.md).
 
 ## One light, all methods
 
@@ -69,6 +79,19 @@ yardstick), exact fixed-point Phong, the three Kuijk-Blake evaluations and kb-ad
 
 EOF
   "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,kb,kb-decomposition,kb-exact,kb-adaptive | tail -n +3
+  if [ "$instructions" = 1 ]; then
+    cat <<EOF
+
+## Instructions per pixel written
+
+The steadier cost figure: instructions executed inside \`tp::fw::Device::draw*\`, counted by
+callgrind for one frame of each scene, divided by the frame's pixels written (repeatable to the
+instruction on any x86-64 machine with the same compiler). \`bash scripts/instructions.sh
+--methods flat,gouraud,phong,kb,kb-adaptive\`, $(date +%Y-%m-%d).
+
+EOF
+    bash scripts/instructions.sh --methods flat,gouraud,phong,kb,kb-adaptive
+  fi
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 echo "wrote $out"
