@@ -128,7 +128,9 @@ std::uint64_t row_bound(const Mat4& m, int i, const std::uint64_t in[3]) {
   std::uint64_t sum = mag(m.m[3][i].raw()) << 16;  // < 2^48
   for (int j = 0; j < 3; ++j) {
     if (in[j] >= (std::uint64_t{1} << 32)) return std::uint64_t{1} << 63;
-    sum += mag(m.m[j][i].raw()) * in[j];  // each < 2^63 ... three of them: see below
+    // Each term < 2^31 · 2^32 = 2^63 and the sum below 2^63 before it: no wrap, and the sum is
+    // checked again after each term.
+    sum += mag(m.m[j][i].raw()) * in[j];
     if (sum >= (std::uint64_t{1} << 63)) return std::uint64_t{1} << 63;
   }
   return (sum >> 16) + 1;

@@ -106,7 +106,7 @@ class PointShader {
     // The stepped per-pixel evaluation (SpanStepper): a triangle small enough that its weights
     // keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled by 2^-bits(area2) so that
     // Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0, Σ k_i = area2), and each point
-    // light's r_i·(L − P_i) by 2^-(bits(area2) + 2), below 2^60 inside.
+    // light's r_i·(L − P_i) only as far as keeps its plane below 2^60 inside (prepare_planes).
     // The per-pixel steps dk_i·(.) must fit as well: |dk_i| < 2^bits(area2), which only slivers
     // (long edges around a small area) fail; they keep the per-pixel weights.
     const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
