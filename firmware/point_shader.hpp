@@ -132,7 +132,6 @@ class PointShader {
   struct LightStepper {
     std::int64_t v[kMaxLights][3];
   };
-  bool steppable() const { return steppable_; }
   // At the centre of pixel (x, y) of a span. The planes are kept modulo 2^64 (unsigned: their
   // value at the screen's origin may not fit), and the value at a pixel inside the triangle,
   // below 2^61, comes out exact.
@@ -169,52 +168,57 @@ class PointShader {
     const Triangle& tri = *tri_;
     const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
     const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
-    {
-      std::uint64_t max_normal = 0, max_eye = 0;
+    const PlaneBasis basis = plane_basis(tri);
+    std::int64_t weighted_normal[3][3], weighted_eye[3][3];  // r_i·N_i, r_i·P_i · 2^-bits(area2)
+    std::uint64_t max_normal = 0, max_eye = 0;
+    for (int i = 0; i < 3; ++i) {
+      const ShadeVertex& v = tri.v[i];
+      const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};
+      const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
+      for (int j = 0; j < 3; ++j) {
+        weighted_normal[i][j] = fx::round_shift_right(r_[i] * n[j], scale);
+        weighted_eye[i][j] = fx::round_shift_right(r_[i] * e[j], scale);
+        max_normal |= mag(weighted_normal[i][j]);
+        max_eye |= mag(weighted_eye[i][j]);
+      }
+    }
+    plane_of(basis, weighted_normal, normal_plane_);
+    plane_of(basis, weighted_eye, eye_plane_);
+    for (int j = 0; j < 3; ++j) {
+      normal_step_[j] = static_cast<std::int64_t>(normal_plane_[1][j]);
+      eye_step_[j] = static_cast<std::int64_t>(eye_plane_[1][j]);
+    }
+    // Inside the triangle n and p are convex combinations of area2·(r_i N_i) and area2·(r_i P_i)
+    // (k_i >= 0, Σ k_i = area2): every component below 2^(bits(area2) + bits(max)). One cut for
+    // the whole triangle brings them to 30 bits, instead of measuring every pixel's.
+    normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
+    eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
+    // Each point light's v = Σ k_i r_i (L − P_i) (|L − P_i| < 2^32 raw, r_i <= 2^30): the
+    // weights r_i (L − P_i) shifted just enough that v stays below 2^60 inside the triangle
+    // (Σ k_i = area2 < 2^scale; 2^62 one step past a span's end), so that a light near the
+    // triangle, whose weights are small, keeps their every bit. v's length is measured at
+    // every pixel: near such a light it is far below its bound.
+    for (int li = 0; li < lights_; ++li) {
+      const LightState& l = *light_[li];
+      if (l.type != LightType::kPoint) continue;
+      const std::int64_t lp[3] = {l.position.x.raw(), l.position.y.raw(), l.position.z.raw()};
+      std::int64_t w[3][3];
+      std::uint64_t max_w = 0;
       for (int i = 0; i < 3; ++i) {
         const ShadeVertex& v = tri.v[i];
-        const std::int64_t n[3] = {v.normal.x.raw(), v.normal.y.raw(), v.normal.z.raw()};
         const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
         for (int j = 0; j < 3; ++j) {
-          weighted_normal_[i][j] = fx::round_shift_right(r_[i] * n[j], scale);
-          weighted_eye_[i][j] = fx::round_shift_right(r_[i] * e[j], scale);
-          max_normal |= mag(weighted_normal_[i][j]);
-          max_eye |= mag(weighted_eye_[i][j]);
+          w[i][j] = r_[i] * (lp[j] - e[j]);
+          max_w |= mag(w[i][j]);
         }
       }
-      set_planes(tri);
-      // Each point light's v = Σ k_i r_i (L − P_i) (|L − P_i| < 2^32 raw, r_i <= 2^30): the
-      // weights r_i (L − P_i) shifted just enough that v stays below 2^60 inside the triangle
-      // (Σ k_i = area2 < 2^scale; 2^62 one step past a span's end), so that a light near the
-      // triangle, whose weights are small, keeps their every bit. v's length is measured at
-      // every pixel: near such a light it is far below its bound.
-      for (int li = 0; li < lights_; ++li) {
-        const LightState& l = *light_[li];
-        if (l.type != LightType::kPoint) continue;
-        const std::int64_t lp[3] = {l.position.x.raw(), l.position.y.raw(), l.position.z.raw()};
-        std::int64_t w[3][3];
-        std::uint64_t max_w = 0;
-        for (int i = 0; i < 3; ++i) {
-          const ShadeVertex& v = tri.v[i];
-          const std::int64_t e[3] = {v.eye.x.raw(), v.eye.y.raw(), v.eye.z.raw()};
-          for (int j = 0; j < 3; ++j) {
-            w[i][j] = r_[i] * (lp[j] - e[j]);
-            max_w |= mag(w[i][j]);
-          }
-        }
-        const int sh = scale + static_cast<int>(std::bit_width(max_w)) - 60;
-        if (sh > 0)
-          for (auto& row : w)
-            for (std::int64_t& x : row) x = fx::round_shift_right(x, sh);
-        plane_of(tri, w, light_plane_[li]);
-        for (int j = 0; j < 3; ++j)
-          light_step_[li][j] = static_cast<std::int64_t>(light_plane_[li][1][j]);
-      }
-      // Inside the triangle n and p are convex combinations of area2·(r_i N_i) and area2·(r_i P_i)
-      // (k_i >= 0, Σ k_i = area2): every component below 2^(bits(area2) + bits(max)). One cut
-      // for the whole triangle brings them to 30 bits, instead of measuring every pixel's.
-      normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
-      eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
+      const int sh = scale + static_cast<int>(std::bit_width(max_w)) - 60;
+      if (sh > 0)
+        for (auto& row : w)
+          for (std::int64_t& x : row) x = fx::round_shift_right(x, sh);
+      plane_of(basis, w, light_plane_[li]);
+      for (int j = 0; j < 3; ++j)
+        light_step_[li][j] = static_cast<std::int64_t>(light_plane_[li][1][j]);
     }
     planes_ready_ = true;
   }
@@ -244,7 +248,7 @@ class PointShader {
     }
   }
   // The n pixels of row y from x = xa: stepped along the row where the triangle allows it
-  // (steppable(): exact integer steps, so a pixel gets the same value whichever run it starts),
+  // (steppable_: exact integer steps, so a pixel gets the same value whichever run it starts),
   // else the point formed at each pixel. The same bits either way a run is cut.
   void shade_pixels(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
     if (steppable_ && !point_lights_) {
@@ -498,47 +502,31 @@ class PointShader {
     spec_zero_below_ = hi;
   }
 
-  // The edge functions k_i are exact linear functions of the subpixel position, so n and p are
-  // too: their value at pixel (0, 0) and their changes per pixel in x and in y (16 subpixels).
-  // The plane Σ k_i w_i over the screen of weights w (per vertex, per component): [0] at the
-  // centre of pixel (0, 0), [1] per pixel in x, [2] per row, modulo 2^64.
-  static void plane_of(const Triangle& tri, const std::int64_t w[3][3], std::uint64_t out[3][3]) {
+  // The edge functions k_i are exact linear functions of the subpixel position, so every
+  // Σ k_i w_i is too: k at the centre of pixel (0, 0), and its changes per pixel in x and per row
+  // (16 subpixels).
+  struct PlaneBasis {
+    std::int64_t k[3][3];  // [origin, per pixel in x, per row][vertex]
+  };
+  static PlaneBasis plane_basis(const Triangle& tri) {
     const Lambdas origin = lambdas_at(tri, 8, 8);
     const Lambdas dx = lambdas_step_x(tri);
-    const std::int64_t dy[3] = {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
-                                16 * (std::int64_t{tri.v[0].sx} - tri.v[2].sx),
-                                16 * (std::int64_t{tri.v[1].sx} - tri.v[0].sx)};
-    const std::int64_t* k[3] = {origin.l, dx.l, dy};
+    return PlaneBasis{{{origin.l[0], origin.l[1], origin.l[2]},
+                       {dx.l[0], dx.l[1], dx.l[2]},
+                       {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
+                        16 * (std::int64_t{tri.v[0].sx} - tri.v[2].sx),
+                        16 * (std::int64_t{tri.v[1].sx} - tri.v[0].sx)}}};
+  }
+  // The plane Σ k_i w_i over the screen of weights w (per vertex, per component): [0] at the
+  // centre of pixel (0, 0), [1] per pixel in x, [2] per row, modulo 2^64.
+  static void plane_of(const PlaneBasis& b, const std::int64_t w[3][3], std::uint64_t out[3][3]) {
     for (int a = 0; a < 3; ++a)
       for (int j = 0; j < 3; ++j) {
         std::uint64_t sum = 0;
         for (int i = 0; i < 3; ++i)
-          sum += static_cast<std::uint64_t>(k[a][i]) * static_cast<std::uint64_t>(w[i][j]);
+          sum += static_cast<std::uint64_t>(b.k[a][i]) * static_cast<std::uint64_t>(w[i][j]);
         out[a][j] = sum;
       }
-  }
-  void set_planes(const Triangle& tri) const {
-    const Lambdas origin = lambdas_at(tri, 8, 8);
-    const Lambdas dx = lambdas_step_x(tri);
-    const std::int64_t dy[3] = {16 * (std::int64_t{tri.v[2].sx} - tri.v[1].sx),
-                                16 * (std::int64_t{tri.v[0].sx} - tri.v[2].sx),
-                                16 * (std::int64_t{tri.v[1].sx} - tri.v[0].sx)};
-    const std::int64_t* k[3] = {origin.l, dx.l, dy};
-    for (int a = 0; a < 3; ++a)
-      for (int j = 0; j < 3; ++j) {
-        std::uint64_t n = 0, e = 0;
-        for (int i = 0; i < 3; ++i) {
-          const auto w = static_cast<std::uint64_t>(k[a][i]);
-          n += w * static_cast<std::uint64_t>(weighted_normal_[i][j]);
-          e += w * static_cast<std::uint64_t>(weighted_eye_[i][j]);
-        }
-        normal_plane_[a][j] = n;
-        eye_plane_[a][j] = e;
-      }
-    for (int j = 0; j < 3; ++j) {
-      normal_step_[j] = static_cast<std::int64_t>(normal_plane_[1][j]);
-      eye_step_[j] = static_cast<std::int64_t>(eye_plane_[1][j]);
-    }
   }
 
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
@@ -576,8 +564,6 @@ class PointShader {
   bool steppable_ = false;
   // The stepped path's state, formed on the first span_stepper of a triangle (prepare_planes).
   mutable bool planes_ready_ = false;
-  mutable std::int64_t weighted_normal_[3][3] = {};  // r_i·N_i, scaled by 2^-bits(area2)
-  mutable std::int64_t weighted_eye_[3][3] = {};     // r_i·P_i, likewise
   // The planes of n and p over the screen: [0] at the centre of pixel (0, 0), [1] per pixel in
   // x, [2] per row, modulo 2^64; the x steps again as signed values.
   mutable std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};

@@ -209,17 +209,7 @@ TEST(Commands, NoViewportRefusesDrawAndClear) {
 TEST(Commands, MemoryRequiredIsExactPerMethod) {
   const ViewportCmd vp{160, 120, PixelFormat::kRgb565, false};
   const BufferCapacityCmd cap{64, 192};
-  const Method methods[] = {Method::kFlat,
-                            Method::kGouraud,
-                            Method::kPhong,
-                            Method::kKuijkBlake,
-                            Method::kKuijkBlakeNoSkip,
-                            Method::kKuijkBlakeDecomposition,
-                            Method::kKuijkBlakeExact,
-                            Method::kKuijkBlakeAdaptive,
-                            Method::kKuijkBlakeAdaptiveNoSkip,
-                            Method::kKuijkBlakeAdaptiveExact};
-  for (const Method m : methods) {
+  for (const Method m : kImplementedMethods) {
     const std::size_t need = Device::memory_required(vp, cap, m);
     EXPECT_GT(Device::method_bytes(m), 0u);
     EXPECT_LE(need, Device::memory_required(vp, cap)) << static_cast<int>(m);

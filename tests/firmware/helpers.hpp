@@ -14,6 +14,18 @@
 
 namespace tp::fw::test {
 
+// Every method the device implements (the reserved ids of types.hpp excluded).
+inline constexpr Method kImplementedMethods[] = {Method::kFlat,
+                                                 Method::kGouraud,
+                                                 Method::kPhong,
+                                                 Method::kKuijkBlake,
+                                                 Method::kKuijkBlakeNoSkip,
+                                                 Method::kKuijkBlakeDecomposition,
+                                                 Method::kKuijkBlakeExact,
+                                                 Method::kKuijkBlakeAdaptive,
+                                                 Method::kKuijkBlakeAdaptiveNoSkip,
+                                                 Method::kKuijkBlakeAdaptiveExact};
+
 inline q15_16 q16(double v) {
   return q15_16::from_raw(static_cast<std::int32_t>(std::llround(v * 65536.0)));
 }

@@ -257,16 +257,6 @@ TEST(Shading, GouraudLightsEachVertexOncePerDraw) {
 // fresh device. (A re-sent scene would not test this: its viewport command rebuilds the method.)
 TEST(Shading, CachesFollowAChangedLightMaterialOrEye) {
   const Mesh sphere = octasphere(1, 0.9);  // triangles of a few hundred pixels: sampled
-  const Method methods[] = {Method::kFlat,
-                            Method::kGouraud,
-                            Method::kPhong,
-                            Method::kKuijkBlake,
-                            Method::kKuijkBlakeNoSkip,
-                            Method::kKuijkBlakeDecomposition,
-                            Method::kKuijkBlakeExact,
-                            Method::kKuijkBlakeAdaptive,
-                            Method::kKuijkBlakeAdaptiveNoSkip,
-                            Method::kKuijkBlakeAdaptiveExact};
   const Scene first = point_light_scene();
   // Light colours and material only: the same lights where N·L changes sign, so that a stale
   // memo entry would match its key (a moved or added light changes that set, and with it the
@@ -288,7 +278,7 @@ TEST(Shading, CachesFollowAChangedLightMaterialOrEye) {
     const FramebufferView fb = rig.dev.framebuffer();
     return std::vector<std::uint8_t>(fb.data, fb.data + std::size_t{fb.stride} * fb.height);
   };
-  for (const Method m : methods) {
+  for (const Method m : kImplementedMethods) {
     Rig reused(160, 120), fresh(160, 120);
     ASSERT_EQ(reused.load(sphere), Error::kOk);
     ASSERT_EQ(fresh.load(sphere), Error::kOk);
