@@ -6,7 +6,10 @@
 // 64-bit Q.30 accumulator: at most 16 lights x intensity 16 x (1 + 1) < 2^10, far inside.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
@@ -63,6 +66,54 @@ inline q1_30 power(q1_30 x, std::uint32_t n) {
     if ((n & 1u) != 0) result = mul(result, base);
   }
   return q1_30::from_raw(static_cast<std::int32_t>(result));
+}
+
+// power(x, N) with N fixed at compile time: the same products in the same order, unrolled (no
+// loop over the exponent's bits). PointShader takes it through unrolled_power's table.
+namespace detail {
+inline std::int64_t power_mul(std::int64_t a, std::int64_t b) {
+  return (a * b + (std::int64_t{1} << 29)) >> 30;
+}
+// Bit 0 of N with base = x^(2^k); kStarted: result already holds a product.
+template <std::uint32_t N, bool kStarted>
+[[gnu::always_inline]] inline std::int64_t power_steps(std::int64_t base, std::int64_t result) {
+  if constexpr ((N & 1u) != 0) result = kStarted ? power_mul(result, base) : base;
+  constexpr bool kNext = kStarted || (N & 1u) != 0;
+  if constexpr ((N >> 1) == 0) {
+    return result;
+  } else {
+    return power_steps<(N >> 1), kNext>(power_mul(base, base), result);
+  }
+}
+template <std::uint32_t N>
+std::int64_t power_unrolled(std::int64_t x) {
+  return power_steps<N, false>(x, 0);
+}
+}  // namespace detail
+
+// The unrolled power for exponents 1..kUnrolledPowers (nullptr above: power() takes them),
+// for a caller that takes many powers of one exponent (firmware/point_shader.hpp). Builds for
+// size (-Os) have none: the table's code is their loop's many times over.
+#if defined(__OPTIMIZE_SIZE__)
+inline constexpr std::uint32_t kUnrolledPowers = 0;
+#else
+inline constexpr std::uint32_t kUnrolledPowers = 32;
+#endif
+using PowerFn = std::int64_t (*)(std::int64_t);
+namespace detail {
+template <std::size_t... N>
+constexpr std::array<PowerFn, sizeof...(N)> power_table(std::index_sequence<N...>) {
+  return {&power_unrolled<N + 1>...};
+}
+}  // namespace detail
+inline PowerFn unrolled_power(std::uint32_t n) {
+  if constexpr (kUnrolledPowers == 0) {
+    static_cast<void>(n);
+    return nullptr;
+  } else {
+    static constexpr auto kTable = detail::power_table(std::make_index_sequence<kUnrolledPowers>{});
+    return n >= 1 && n <= kUnrolledPowers ? kTable[n - 1] : nullptr;
+  }
 }
 
 // Lighting at eye-space point p with unit normal n.

@@ -42,13 +42,17 @@ struct CutVector {
   std::int64_t c[3] = {0, 0, 0};
   fx::RsqrtFast inv{0, 1};  // zero: over_length gives (x·0 + 1) >> 1 = 0
 };
-inline CutVector cut_vector(const std::int64_t v[3], int cut) {
-  const std::int64_t bias = cut > 0 ? std::int64_t{1} << (cut - 1) : 0;
+// bias: 2^(cut − 1), or 0 for cut 0 (cut_bias; a caller with one cut for many vectors keeps it).
+constexpr std::int64_t cut_bias(int cut) { return cut > 0 ? std::int64_t{1} << (cut - 1) : 0; }
+inline CutVector cut_vector(const std::int64_t v[3], int cut, std::int64_t bias) {
   CutVector r;
   for (int j = 0; j < 3; ++j) r.c[j] = (v[j] + bias) >> cut;
   const auto s = static_cast<std::uint64_t>(r.c[0] * r.c[0] + r.c[1] * r.c[1] + r.c[2] * r.c[2]);
   if (s != 0) r.inv = fx::rsqrt_fast(s);  // s <= 3·2^60
   return r;
+}
+inline CutVector cut_vector(const std::int64_t v[3], int cut) {
+  return cut_vector(v, cut, cut_bias(cut));
 }
 // The cut that brings components below 2^bits to at most 30 bits.
 constexpr int cut_for(int bits) { return bits > 30 ? bits - 30 : 0; }
@@ -68,6 +72,15 @@ inline std::int64_t cosine(const CutVector& a, const Vec3u& u) {
 }
 
 class PointShader {
+ private:
+  // The Blinn-Phong sum at a point: the coloured lights' terms per channel, and for the grey lights
+  // (the same intensity I in every channel) the sums of their I·N·L and of their I·(N·H)^n, which
+  // take kd·O_c and ks once per point instead of once per light.
+  struct Sums {
+    std::int64_t grey_ndl = 0, grey_power = 0;  // Q1.30 each, |.| <= 16·16·2^30 = 2^38
+    std::int64_t coloured[3] = {0, 0, 0};       // the other lights' terms, Q.30
+  };
+
  public:
   static constexpr int kFrac = 14;  // output: levels, Q.14
 
@@ -79,30 +92,7 @@ class PointShader {
     q15_16 wmin = tri.v[0].w;
     for (const ShadeVertex& v : tri.v) wmin = v.w < wmin ? v.w : wmin;
     for (int i = 0; i < 3; ++i) r_[i] = fx::div<q1_30>(wmin, tri.v[i].w).raw();
-    const MaterialCmd& m = ctx.material;
-    for (int c = 0; c < 3; ++c) {
-      ambient_[c] = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
-      diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
-    }
-    update_spec_zero(m);
-    lights_ = 0;
-    point_lights_ = false;
-    for (std::size_t i = 0; i < kMaxLights; ++i) {
-      const LightState& l = ctx.lights[i];
-      if (l.type == LightType::kOff) continue;
-      const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
-      if (skipping && dark) continue;  // adds exactly 0
-      white_[lights_] = l.color[0].raw() == kUnitIntensity && l.color[1].raw() == kUnitIntensity &&
-                        l.color[2].raw() == kUnitIntensity;
-      // A directional light seen from an eye at infinity has one H everywhere.
-      fixed_h_[lights_] = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;
-      if (fixed_h_[lights_])
-        h_[lights_] =
-            fx::normalize_fast(std::int64_t{l.direction.x.raw()}, std::int64_t{l.direction.y.raw()},
-                               std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
-      point_lights_ = point_lights_ || l.type == LightType::kPoint;
-      light_[lights_++] = &l;
-    }
+    prepare_lights(ctx, skipping);
     // The stepped per-pixel evaluation (SpanStepper): a triangle small enough that its weights
     // keep 30 bits (area2 < 2^30); r_i·N_i and r_i·P_i are scaled by 2^-bits(area2) so that
     // Σ k_i·(.) stays below 2^61 for the pixels inside (k_i >= 0, Σ k_i = area2), and each point
@@ -118,6 +108,49 @@ class PointShader {
     planes_ready_ = false;  // formed by the first span_stepper: a sampled triangle needs none
   }
 
+ private:
+  // The material's and the lights' part of setup: the same for every triangle of a draw, so it is
+  // kept while the context and its revision are (ShadeContext::revision; revision 0, a context
+  // that never counted its changes, is taken afresh every time).
+  void prepare_lights(const ShadeContext& ctx, bool skipping) {
+    if (ctx.revision != 0 && &ctx == lights_ctx_ && ctx.revision == lights_revision_ &&
+        skipping == lights_skipping_)
+      return;
+    lights_ctx_ = &ctx;
+    lights_revision_ = ctx.revision;
+    lights_skipping_ = skipping;
+    const MaterialCmd& m = ctx.material;
+    for (int c = 0; c < 3; ++c) {
+      ambient_[c] = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
+      diffuse_[c] = fx::mul_sat<q1_30>(m.kd, m.color[c]).raw();
+    }
+    update_spec_zero(m);
+    margin2_ = skipping ? spec_margin2_ : 0;
+    lights_ = 0;
+    point_lights_ = false;
+    std::int64_t grey_total = 0;  // Σ of the grey lights' intensities, Q15.16
+    for (std::size_t i = 0; i < kMaxLights; ++i) {
+      const LightState& l = ctx.lights[i];
+      if (l.type == LightType::kOff) continue;
+      const bool dark = l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0;
+      if (skipping && dark) continue;  // adds exactly 0
+      grey_[lights_] = l.color[0].raw() == l.color[1].raw() && l.color[1].raw() == l.color[2].raw();
+      white_[lights_] = grey_[lights_] && l.color[0].raw() == kUnitIntensity;
+      // A directional light seen from an eye at infinity has one H everywhere.
+      fixed_h_[lights_] = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;
+      if (fixed_h_[lights_])
+        h_[lights_] =
+            fx::normalize_fast(std::int64_t{l.direction.x.raw()}, std::int64_t{l.direction.y.raw()},
+                               std::int64_t{l.direction.z.raw()} + (std::int64_t{1} << 30));
+      point_lights_ = point_lights_ || l.type == LightType::kPoint;
+      direction_[lights_] = l.direction;
+      if (grey_[lights_]) grey_total += l.color[0].raw();
+      light_[lights_++] = &l;
+    }
+    few_grey_ = grey_total <= 2 * kUnitIntensity;
+  }
+
+ public:
   // The per-pixel path along a span: the numerators n = Σ k_i r_i N_i and p = Σ k_i r_i P_i (at
   // the triangle's scale) are linear in screen x and y, so they start each span from the
   // triangle's planes and step along it by additions, exactly, and N·L, N·E, L·E and N·H are
@@ -193,6 +226,8 @@ class PointShader {
     // the whole triangle brings them to 30 bits, instead of measuring every pixel's.
     normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
     eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
+    normal_bias_ = cut_bias(normal_cut_);
+    eye_bias_ = cut_bias(eye_cut_);
     // Each point light's v = Σ k_i r_i (L − P_i) (|L − P_i| < 2^32 raw, r_i <= 2^30): the
     // weights r_i (L − P_i) shifted just enough that v stays below 2^60 inside the triangle
     // (Σ k_i = area2 < 2^scale; 2^62 one step past a span's end), so that a light near the
@@ -261,30 +296,44 @@ class PointShader {
       shade_run<true>(st, &light_stepper_, n, out);
       return;
     }
-    std::int32_t g[3];
     Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{xa} + 8, 16 * std::int64_t{y} + 8);
     const Lambdas step = lambdas_step_x(*tri_);
     for (std::int32_t x = 0; x < n; ++x) {
-      at(lam.l[0], lam.l[1], lam.l[2], g);
-      out[x] = Rgb8{pixel_level(g[0]), pixel_level(g[1]), pixel_level(g[2])};
+      std::int64_t sum[3];
+      radiance(point(lam.l[0], lam.l[1], lam.l[2]), sum);
+      out[x] = Rgb8{output_level(sum[0]), output_level(sum[1]), output_level(sum[2])};
       for (int i = 0; i < 3; ++i) lam.l[i] += step.l[i];
     }
   }
-  // A Q.14 level rounded half up to an integer and clamped to [0, 255].
-  static std::uint8_t pixel_level(std::int32_t q14) {
-    const std::int32_t l = (q14 + (1 << (kFrac - 1))) >> kFrac;
-    return l < 0 ? std::uint8_t{0} : (l > 255 ? std::uint8_t{255} : static_cast<std::uint8_t>(l));
-  }
-  // The output colour at the stepper's pixel: level_of's Q.14 level, rounded to an integer and
-  // clamped to [0, 255] (kb_quadratic.hpp's quad_level), in one step.
+  // The output colour at the stepper's pixel (output_level of each channel's sum).
   template <bool kPoint>
   [[gnu::always_inline]] Rgb8 shade_stepped(const SpanStepper& st, const LightStepper* ls) const {
-    std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
+    Sums acc;
     const bool finite = ctx_->eye == EyeMode::kFinite;
-    const CutVector n = cut_vector(st.n, normal_cut_);
+    const CutVector n = cut_vector(st.n, normal_cut_, normal_bias_);
     CutVector e;  // toward the point from the eye (−E), finite eye only
-    if (finite) e = cut_vector(st.p, eye_cut_);
+    if (finite) e = cut_vector(st.p, eye_cut_, eye_bias_);
     const std::int64_t normal_eye = finite ? -cosine(n, e) : over_length(n.c[2], n);  // N·E
+    if (!kPoint && finite) {  // directional lights, finite eye: the common case, its loop lean
+      for (int li = 0; li < lights_; ++li) {
+        const Vec3u& d = direction_[li];
+        const std::int64_t normal_light = cosine(n, d);
+        const std::int64_t ndh = specular_cosine(normal_light + normal_eye, -cosine(e, d));
+        add_light(li, normal_light > 0 ? normal_light : 0, ndh, acc);
+      }
+    } else {
+      shade_lights<kPoint>(n, e, normal_eye, ls, acc);
+    }
+    std::int64_t sum[3];
+    totals(acc, sum);
+    return Rgb8{output_level(sum[0]), output_level(sum[1]), output_level(sum[2])};
+  }
+  // shade_stepped's lights in general: point lights (kPoint), or the eye at infinity.
+  template <bool kPoint>
+  [[gnu::always_inline]] void shade_lights(const CutVector& n, const CutVector& e,
+                                           std::int64_t normal_eye, const LightStepper* ls,
+                                           Sums& acc) const {
+    const bool finite = ctx_->eye == EyeMode::kFinite;
     for (int li = 0; li < lights_; ++li) {
       const LightState& l = *light_[li];
       std::int64_t normal_light = 0, ndh = 0;
@@ -295,7 +344,7 @@ class PointShader {
             v, cut_for(static_cast<int>(std::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2])))));
         normal_light = cosine(n, lv);
         const std::int64_t light_eye = finite ? -cosine(e, lv) : over_length(lv.c[2], lv);
-        ndh = halfway_cosine(normal_light + normal_eye, light_eye);
+        ndh = specular_cosine(normal_light + normal_eye, light_eye);
       } else {
         normal_light = cosine(n, l.direction);
         if (fixed_h_[li]) {
@@ -303,12 +352,11 @@ class PointShader {
           ndh = d > 0 ? d : 0;
         } else {
           const std::int64_t light_eye = finite ? -cosine(e, l.direction) : l.direction.z.raw();
-          ndh = halfway_cosine(normal_light + normal_eye, light_eye);
+          ndh = specular_cosine(normal_light + normal_eye, light_eye);
         }
       }
       add_light(li, normal_light > 0 ? normal_light : 0, ndh, acc);
     }
-    return Rgb8{output_level(acc[0]), output_level(acc[1]), output_level(acc[2])};
   }
 
   // The geometry at a point: normal, eye direction, and the eye-space position as s·P (p, in
@@ -410,12 +458,21 @@ class PointShader {
     }
     const std::int64_t light_eye =
         ctx_->eye == EyeMode::kFinite ? dot_unit(lv, pt.eye) : lv.z.raw();
-    return halfway_cosine(normal_light + pt.normal_eye, light_eye);
+    return specular_cosine(normal_light + pt.normal_eye, light_eye);
   }
-  // N·H from x = N·(L + E) and L·E (Q1.30): x / √(2 + 2 L·E), clamped to [0, 1].
-  static std::int64_t halfway_cosine(std::int64_t x, std::int64_t light_eye) {
+  // N·H from x = N·(L + E) and L·E (Q1.30): x / √(2 + 2 L·E), clamped to [0, 1] — or 0 where
+  // that is certainly below spec_zero_below_ (the power is 0 either way, and add_light needs no
+  // more): x² < t²·|L + E|², t = spec_zero_below_ − 8, decides it without the reciprocal root.
+  // The computed N·H is within 2^-28 relative (4 units at most) and half a unit of rounding of the
+  // true x/|L + E|, so a true value <= t leaves it below spec_zero_below_ (x <= 2^31 + 8 and
+  // |L + E|² <= 2^32 + 16 in Q.30: both sides below 2^63). margin2_ is 0 where nothing is skipped.
+  // Where L and E are opposite, H is undefined; the vector form gives 0 there, and so does this.
+  std::int64_t specular_cosine(std::int64_t x, std::int64_t light_eye) const {
     const std::int64_t length2 = (std::int64_t{2} << 30) + 2 * light_eye;  // |L + E|², Q.30
     if (length2 <= 0 || x <= 0) return 0;
+    if (static_cast<std::uint64_t>(x) * static_cast<std::uint64_t>(x) <
+        static_cast<std::uint64_t>(margin2_) * static_cast<std::uint64_t>(length2))
+      return 0;
     // x / √(length2·2^-30) in Q1.30: (x·r) >> shift is x/√length2 in Q1.30, times 2^15.
     const fx::RsqrtFast inv = fx::rsqrt_fast(static_cast<std::uint64_t>(length2));
     const int sh = inv.shift + 15;
@@ -427,79 +484,118 @@ class PointShader {
   // the `unclamped` mask (bit i: light(i); the terminators of kb-adaptive) have their diffuse
   // left unclamped — N·L may be negative — and their N·L reported, in order, in out[3..] (Q.24).
   void shade(const Point& pt, std::int32_t out[], std::uint32_t unclamped = 0) const {
-    std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
-    int k = 3;
-    if (pt.inside) {
+    std::int64_t sum[3];
+    radiance(pt, sum, out + 3, unclamped);
+    for (int c = 0; c < 3; ++c) out[c] = level_of(sum[c]);
+    if (!pt.inside)
+      for (int i = 0; i < std::popcount(unclamped); ++i) out[3 + i] = 0;
+  }
+
+ private:
+  // The radiance per channel at the point, Q.30 (before any clamp), and the unclamped lights' N·L
+  // (Q.24) in nl[0..].
+  void radiance(const Point& pt, std::int64_t sum[3], std::int32_t* nl = nullptr,
+                std::uint32_t unclamped = 0) const {
+    Sums acc;
+    int k = 0;
+    if (pt.inside && !point_lights_ && ctx_->eye == EyeMode::kFinite) {
+      // Directional lights, finite eye (as shade_stepped's lean loop).
+      for (int li = 0; li < lights_; ++li) {
+        const Vec3u& d = direction_[li];
+        const std::int64_t dot_l = dot_unit(pt.normal, d);
+        const bool open = ((unclamped >> li) & 1u) != 0;
+        if (open) nl[k++] = static_cast<std::int32_t>(fx::round_shift_right(dot_l, 6));
+        const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
+        add_light(li, ndl, specular_cosine(dot_l + pt.normal_eye, dot_unit(d, pt.eye)), acc);
+      }
+    } else if (pt.inside) {
       for (int li = 0; li < lights_; ++li) {
         const Vec3u lv = light_direction(pt, li);
         const std::int64_t dot_l = dot_unit(pt.normal, lv);
         const bool open = ((unclamped >> li) & 1u) != 0;
-        if (open) out[k++] = static_cast<std::int32_t>(fx::round_shift_right(dot_l, 6));
+        if (open) nl[k++] = static_cast<std::int32_t>(fx::round_shift_right(dot_l, 6));
         const std::int64_t ndl = open || dot_l > 0 ? dot_l : 0;
         const std::int64_t ndh = normal_halfway(pt, li, lv, dot_l);
         add_light(li, ndl, ndh, acc);
       }
     }
-    for (int c = 0; c < 3; ++c) out[c] = level_of(acc[c]);
-    if (!pt.inside)
-      for (int i = 0; i < std::popcount(unclamped); ++i) out[3 + i] = 0;
+    totals(acc, sum);
   }
 
-  void at(std::int64_t k0, std::int64_t k1, std::int64_t k2, std::int32_t out[3]) const {
-    shade(point(k0, k1, k2), out);
+  // Channel c: ambient_c + coloured_c + ⌊(kd·O_c·Σ I·N·L + ks·Σ I·(N·H)^n + 2^29) / 2^30⌋, the grey
+  // lights rounded once. Where their intensities add up to at most 2 each product is at most about
+  // 2^61 and the plain sum fits; above, the sums' whole and fractional parts are multiplied apart
+  // (the same value).
+  [[gnu::always_inline]] void totals(const Sums& s, std::int64_t out[3]) const {
+    const std::int64_t ks = ctx_->material.ks.raw();
+    constexpr std::int64_t half = std::int64_t{1} << 29;
+    if (few_grey_) {
+      const std::int64_t spec = ks * s.grey_power + half;
+      for (int c = 0; c < 3; ++c)
+        out[c] = ambient_[c] + s.coloured[c] + ((diffuse_[c] * s.grey_ndl + spec) >> 30);
+      return;
+    }
+    constexpr std::int64_t kFraction = (std::int64_t{1} << 30) - 1;
+    const std::int64_t ndl_whole = s.grey_ndl >> 30, ndl_fraction = s.grey_ndl & kFraction;
+    const std::int64_t spec_whole = ks * (s.grey_power >> 30);
+    const std::int64_t spec_fraction = ks * (s.grey_power & kFraction) + half;
+    for (int c = 0; c < 3; ++c)
+      out[c] = ambient_[c] + s.coloured[c] + diffuse_[c] * ndl_whole + spec_whole +
+               ((diffuse_[c] * ndl_fraction + spec_fraction) >> 30);
   }
-
- private:
-  // One light's Blinn-Phong term in each channel's Q.30 sum, from max(0, N·L) (or the unclamped
-  // N·L of a terminator) and max(0, N·H).
-  //
-  // Two shortcuts give the same bits as the full form (kNoSkip keeps the full form, and its
-  // images are tested to be identical): below spec_zero_below_ the specular term rounds to
-  // exactly 0, so the power is not taken; and a light of intensity exactly 1 in every channel
-  // scales by 2^16 / 2^16, which round_shift_right undoes exactly, so the term is added as is.
+  // One light's Blinn-Phong term, from max(0, N·L) (or the unclamped N·L of a terminator) and
+  // max(0, N·H). Below spec_zero_below_ the power is exactly 0, so it is not taken: the same
+  // bits (kNoSkip takes it, and its images are tested to be identical).
   [[gnu::always_inline]] void add_light(int li, std::int64_t ndl, std::int64_t ndh,
-                                        std::int64_t acc[3]) const {
+                                        Sums& sums) const {
     const bool no_spec = skipping_ && ndh < spec_zero_below_;
     if (no_spec && ndl == 0) return;  // adds exactly 0
     const MaterialCmd& m = ctx_->material;
-    const std::int64_t spec =
-        no_spec ? 0
-                : mul_q30(m.ks.raw(),
-                          power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw());
-    if (white_[li]) {
-      for (int c = 0; c < 3; ++c) acc[c] += mul_q30(diffuse_[c], ndl) + spec;
+    const std::int64_t pw = no_spec ? 0
+                            : power_fn_ != nullptr
+                                ? power_fn_(ndh)
+                                : power(q1_30::from_raw(static_cast<std::int32_t>(ndh)), m.n).raw();
+    if (white_[li]) {  // I = 1: I·x rounds to x
+      sums.grey_ndl += ndl;
+      sums.grey_power += pw;
       return;
     }
     const LightState& l = *light_[li];
+    if (grey_[li]) {  // I·x, Q1.30 × Q15.16 (|.| < 2^51), rounded to Q1.30
+      sums.grey_ndl += fx::round_shift_right(ndl * l.color[0].raw(), 16);
+      sums.grey_power += fx::round_shift_right(pw * l.color[0].raw(), 16);
+      return;
+    }
+    const std::int64_t spec = mul_q30(m.ks.raw(), pw);
     for (int c = 0; c < 3; ++c) {
       const std::int64_t term = mul_q30(diffuse_[c], ndl) + spec;
-      acc[c] += fx::round_shift_right(term * l.color[c].raw(), 16);
+      sums.coloured[c] += fx::round_shift_right(term * l.color[c].raw(), 16);
     }
   }
 
-  // The least N·H (Q1.30) whose specular term ks·(N·H)^n does not round to 0: both roundings
-  // are monotone in N·H, so a bisection finds it; kept until the exponent or ks changes.
+  // The least N·H (Q1.30) whose power (N·H)^n is not 0: power's roundings are monotone in N·H,
+  // so a bisection finds it; kept until the exponent changes. spec_margin2_: t²/2^30 (rounded
+  // down) for t = spec_zero_below_ − 8, specular_cosine's bound; 0 where there is none.
   void update_spec_zero(const MaterialCmd& m) {
-    if (m.n == spec_zero_n_ && m.ks.raw() == spec_zero_ks_) return;
+    if (m.n == spec_zero_n_) return;
     spec_zero_n_ = m.n;
-    spec_zero_ks_ = m.ks.raw();
-    const auto spec = [&](std::int64_t x) {
-      return mul_q30(m.ks.raw(), power(q1_30::from_raw(static_cast<std::int32_t>(x)), m.n).raw());
+    power_fn_ = unrolled_power(m.n);
+    const auto pw = [&](std::int64_t x) {
+      return power(q1_30::from_raw(static_cast<std::int32_t>(x)), m.n).raw();
     };
-    std::int64_t lo = 0, hi = std::int64_t{1} << 30;  // spec(lo) == 0 < spec(hi), or none is
-    if (spec(hi) == 0) {
-      spec_zero_below_ = hi + 1;  // never non-zero: every N·H (at most 2^30) gives 0
-      return;
-    }
-    if (spec(lo) != 0) {
+    std::int64_t lo = 0, hi = std::int64_t{1} << 30;  // pw(lo) == 0 < pw(hi), or none is
+    spec_margin2_ = 0;
+    if (pw(lo) != 0) {  // n = 0: the power is 1 everywhere
       spec_zero_below_ = 0;
       return;
     }
     while (hi - lo > 1) {
       const std::int64_t mid = lo + (hi - lo) / 2;
-      (spec(mid) == 0 ? lo : hi) = mid;
+      (pw(mid) == 0 ? lo : hi) = mid;
     }
     spec_zero_below_ = hi;
+    const std::int64_t t = spec_zero_below_ - 8;
+    if (t > 0) spec_margin2_ = (t * t) >> 30;
   }
 
   // The edge functions k_i are exact linear functions of the subpixel position, so every
@@ -569,6 +665,7 @@ class PointShader {
   mutable std::uint64_t normal_plane_[3][3] = {}, eye_plane_[3][3] = {};
   mutable std::int64_t normal_step_[3] = {0, 0, 0}, eye_step_[3] = {0, 0, 0};
   mutable int normal_cut_ = 0, eye_cut_ = 0;
+  mutable std::int64_t normal_bias_ = 0, eye_bias_ = 0;       // cut_bias of the two cuts
   mutable std::uint64_t light_plane_[kMaxLights][3][3] = {};  // point lights' v (light_[] index)
   mutable std::int64_t light_step_[kMaxLights][3] = {};
   // The point lights' v along the current run: a member, not a local, because its 384 bytes
@@ -579,14 +676,23 @@ class PointShader {
   std::int64_t diffuse_[3] = {0, 0, 0};  // kd·O_c, Q1.30
   const LightState* light_[kMaxLights] = {};
   bool fixed_h_[kMaxLights] = {};
+  bool grey_[kMaxLights] = {};   // the same intensity in every channel
   bool white_[kMaxLights] = {};  // intensity exactly 1 in every channel
   static constexpr std::int32_t kUnitIntensity = std::int32_t{1} << 16;  // q15_16 one
   std::int64_t spec_zero_below_ = 0;                                     // update_spec_zero
-  std::uint32_t spec_zero_n_ = 0;  // the exponent and ks it was found for (n >= 1: 0 is none)
-  std::int32_t spec_zero_ks_ = 0;
+  std::int64_t spec_margin2_ = 0;
+  // The context, revision and skipping the lights' part was prepared for (prepare_lights).
+  const ShadeContext* lights_ctx_ = nullptr;
+  std::uint64_t lights_revision_ = 0;
+  bool lights_skipping_ = true;
+  PowerFn power_fn_ = nullptr;  // power(·, n) unrolled for this exponent (unrolled_power)
+  std::int64_t margin2_ = 0;    // spec_margin2_ where skipping_, else 0 (specular_cosine)
+  std::uint32_t spec_zero_n_ = ~std::uint32_t{0};  // the exponent it was found for (none yet)
   Vec3u h_[kMaxLights];
+  Vec3u direction_[kMaxLights];  // light_[i]->direction, beside the other per-light values
   int lights_ = 0;
   bool point_lights_ = false;  // some light_[] is a point light
+  bool few_grey_ = true;       // the grey lights' intensities add up to at most 2 (totals)
 };
 
 }  // namespace tp::fw

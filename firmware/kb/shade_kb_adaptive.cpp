@@ -417,14 +417,6 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     for (EdgeMemo& m : edge_memo_) m.valid = false;
     memo_context_.take(ctx);
   }
-  const Lambdas step = lambdas_step_x(tri);
-  de1_ = step.l[1];
-  de2_ = step.l[2];
-  // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
-  du_ = fx::div<local_t>(fx::int_q::from_raw(de1_), fx::int_q::from_raw(tri.area2)).raw();
-  dv_ = fx::div<local_t>(fx::int_q::from_raw(de2_), fx::int_q::from_raw(tri.area2)).raw();
-  area_recip_ = (std::int64_t{1} << 60) / tri.area2;
-
   // A triangle of fewer than 64 pixels is cheaper evaluated exactly at every pixel than sampled
   // and checked, whatever the check would say (about nine of its fifteen samples are its own on
   // a mesh; docs/KUIJK-BLAKE.md has the measurements).
@@ -433,6 +425,13 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     ++counters_->adaptive_exact;
     return true;
   }
+  const Lambdas step = lambdas_step_x(tri);
+  de1_ = step.l[1];
+  de2_ = step.l[2];
+  // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
+  du_ = fx::div<local_t>(fx::int_q::from_raw(de1_), fx::int_q::from_raw(tri.area2)).raw();
+  dv_ = fx::div<local_t>(fx::int_q::from_raw(de2_), fx::int_q::from_raw(tri.area2)).raw();
+  area_recip_ = (std::int64_t{1} << 60) / tri.area2;
   find_terminators(tri);
   prepare_edge_keys(tri);
   std::uint32_t peaks = ~std::uint32_t{0};  // every light, until the guard narrows it

@@ -306,5 +306,34 @@ TEST(Shading, PowerByRepeatedSquaring) {
   EXPECT_LT(worst, 1.0 / (1 << 22));
 }
 
+TEST(Shading, UnrolledPowerIsPowerBitForBit) {
+  // The unrolled powers (lighting.hpp, unrolled_power) must take power()'s products in power()'s
+  // order: the same bits for every exponent they cover, at every input the callers give (N·H in
+  // [0, 1] plus the few LSB a dot of unit vectors may exceed it by). Above the table, none.
+  std::uint32_t covered = 0;
+  for (std::uint32_t n = 1; n <= 70; ++n) {
+    const PowerFn fn = unrolled_power(n);
+    if (n > kUnrolledPowers) {
+      EXPECT_EQ(fn, nullptr) << n;
+      continue;
+    }
+    ASSERT_NE(fn, nullptr) << n;
+    ++covered;
+    std::uint64_t state = 0x9e3779b97f4a7c15u * n;
+    for (int k = 0; k < 20000; ++k) {
+      state = state * 6364136223846793005u + 1442695040888963407u;
+      const auto x = static_cast<std::int64_t>((state >> 33) % ((std::int64_t{1} << 30) + 5));
+      ASSERT_EQ(fn(x), power(q1_30::from_raw(static_cast<std::int32_t>(x)), n).raw())
+          << "n = " << n << ", x = " << x;
+    }
+    for (std::int64_t x :
+         {std::int64_t{0}, std::int64_t{1}, std::int64_t{1} << 29, (std::int64_t{1} << 30) - 1,
+          std::int64_t{1} << 30, (std::int64_t{1} << 30) + 4})
+      ASSERT_EQ(fn(x), power(q1_30::from_raw(static_cast<std::int32_t>(x)), n).raw()) << n;
+  }
+  EXPECT_EQ(covered, kUnrolledPowers);
+  EXPECT_EQ(unrolled_power(0), nullptr);
+}
+
 }  // namespace
 }  // namespace tp::fw::test
