@@ -45,6 +45,13 @@ struct Radiance {
   std::int64_t c[3];  // I_c, Q.30, not yet clamped
 };
 
+namespace detail {
+// One product of power(): Q1.30 × Q1.30 rounded half up.
+inline std::int64_t power_mul(std::int64_t a, std::int64_t b) {
+  return (a * b + (std::int64_t{1} << 29)) >> 30;
+}
+}  // namespace detail
+
 // x^n by repeated squaring, x in [0, 1] (q1_30; every caller clamps, a dot of unit vectors may
 // exceed 1 by a few LSB), n >= 1; each product rounded to q1_30, half up. For such x that is the
 // rounding of fx::mul_sat (ties away from zero = half up for non-negative values) without its
@@ -54,16 +61,13 @@ struct Radiance {
 // The first product of the result, 1·x^(2^k), is exact ((2^30·b + 2^29) >> 30 = b), so it is
 // taken as is: the same value with one multiplication and test less.
 inline q1_30 power(q1_30 x, std::uint32_t n) {
-  const auto mul = [](std::int64_t a, std::int64_t b) {
-    return (a * b + (std::int64_t{1} << 29)) >> 30;
-  };
   if (n == 0) return q1_30::one();
   std::int64_t base = x.raw();
-  for (; (n & 1u) == 0; n >>= 1) base = mul(base, base);
+  for (; (n & 1u) == 0; n >>= 1) base = detail::power_mul(base, base);
   std::int64_t result = base;
   for (n >>= 1; n != 0; n >>= 1) {
-    base = mul(base, base);
-    if ((n & 1u) != 0) result = mul(result, base);
+    base = detail::power_mul(base, base);
+    if ((n & 1u) != 0) result = detail::power_mul(result, base);
   }
   return q1_30::from_raw(static_cast<std::int32_t>(result));
 }
@@ -71,9 +75,6 @@ inline q1_30 power(q1_30 x, std::uint32_t n) {
 // power(x, N) with N fixed at compile time: the same products in the same order, unrolled (no
 // loop over the exponent's bits). PointShader takes it through unrolled_power's table.
 namespace detail {
-inline std::int64_t power_mul(std::int64_t a, std::int64_t b) {
-  return (a * b + (std::int64_t{1} << 29)) >> 30;
-}
 // Bit 0 of N with base = x^(2^k); kStarted: result already holds a product.
 template <std::uint32_t N, bool kStarted>
 [[gnu::always_inline]] inline std::int64_t power_steps(std::int64_t base, std::int64_t result) {

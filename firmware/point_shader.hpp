@@ -499,7 +499,9 @@ class PointShader {
     Sums acc;
     int k = 0;
     if (pt.inside && !point_lights_ && ctx_->eye == EyeMode::kFinite) {
-      // Directional lights, finite eye (as shade_stepped's lean loop).
+      // Directional lights, finite eye (as shade_stepped's lean loop). The two loops repeat the
+      // terminator's handling on purpose: one lambda for both cost 16 instructions per pixel on
+      // teapot-l8 (its captured state left the registers).
       for (int li = 0; li < lights_; ++li) {
         const Vec3u& d = direction_[li];
         const std::int64_t dot_l = dot_unit(pt.normal, d);
