@@ -29,15 +29,16 @@ struct Counters {
   std::uint64_t lights_skipped_span = 0;
   std::uint64_t segments = 0;  // span segments (summed sections, Kuijk-Blake)
   // kb-adaptive: triangles per path (kb_adaptive.hpp), sub-triangles, exact lattice samples.
-  std::uint64_t adaptive_constant = 0;    // one colour within the budget
-  std::uint64_t adaptive_linear = 0;      // a plane per channel within the budget
-  std::uint64_t adaptive_quadratic = 0;   // one quadratic per channel, all lights summed
-  std::uint64_t adaptive_subdivided = 0;  // cut into 4^k sub-triangles with exact samples
-  std::uint64_t adaptive_exact = 0;       // small and over budget: exact at every pixel
-  std::uint64_t subtriangles = 0;         // sub-triangles of the subdivided triangles
-  std::uint64_t subtriangles_exact = 0;   // of those, evaluated per pixel (over budget at 4^4)
-  std::uint64_t terminator_cells = 0;     // cells (or triangles) clamping N·L per pixel
-  std::uint64_t lattice_samples = 0;      // exact Blinn-Phong samples (vertices, midpoints, checks)
+  std::uint64_t adaptive_constant = 0;       // one colour within the budget
+  std::uint64_t adaptive_linear = 0;         // a plane per channel within the budget
+  std::uint64_t adaptive_quadratic = 0;      // one quadratic per channel, all lights summed
+  std::uint64_t adaptive_subdivided = 0;     // cut into 4^k sub-triangles with exact samples
+  std::uint64_t adaptive_exact = 0;          // small and over budget: exact at every pixel
+  std::uint64_t subtriangles = 0;            // sub-triangles of the subdivided triangles
+  std::uint64_t subtriangles_exact = 0;      // of those, evaluated per pixel (over budget at 4^4)
+  std::uint64_t subtriangles_unchecked = 0;  // of those, deepest cells taken without a check
+  std::uint64_t terminator_cells = 0;        // cells (or triangles) clamping N·L per pixel
+  std::uint64_t lattice_samples = 0;  // exact Blinn-Phong samples (vertices, midpoints, checks)
   // Overflow guards that fired: intermediate values clamped at the limit of their format where
   // the firmware does not prove that they fit (docs/STABILITY.md lists every site, counted or
   // proven). Not counted: the output colour's clamp to [0, 1] (over-exposure is the specified

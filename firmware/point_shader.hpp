@@ -428,6 +428,7 @@ class PointShader {
 
  public:
   int lights() const { return lights_; }
+  bool point_lights() const { return point_lights_; }
   const LightState& light(int i) const { return *light_[i]; }
 
   // L toward light i from the point, and the halfway vector H = normalize(L + E).

@@ -122,6 +122,7 @@ CounterSnapshot counter_snapshot(const fw::Counters& c) {
           {"adaptive_exact", c.adaptive_exact},
           {"subtriangles", c.subtriangles},
           {"subtriangles_exact", c.subtriangles_exact},
+          {"subtriangles_unchecked", c.subtriangles_unchecked},
           {"terminator_cells", c.terminator_cells},
           {"lattice_samples", c.lattice_samples},
           {"saturations", c.saturations},

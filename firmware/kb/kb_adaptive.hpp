@@ -33,7 +33,10 @@ namespace tp::fw::kb {
 // 0.61 does not (tests/kb/test_kb_adaptive.cpp).
 inline constexpr std::int32_t kBudgetLevels = 1;
 inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
-inline constexpr int kMaxLevel = 4;                 // deepest subdivision: 4^4 = 256 sub-triangles
+inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
+// A cell of level kMaxLevel − 1 whose estimate is within this makes its children leaves unchecked
+// (refine): under the h³ law their error is an eighth of it, 0.094 level.
+inline constexpr std::int32_t kTrustedMiss = 2 * kEstimateBudget;  // 0.75 level, Q.14
 inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
@@ -126,12 +129,13 @@ class KbAdaptiveMethod final : public ShadingMethod {
   static void shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n,
                               Rgb8* out);
   Samples6 samples_of(const Cell& c, int ch) const;
-  std::int64_t check_error(const Cell& c);
+  std::int64_t check_error(const Cell& c, std::int64_t nl_error[]);
   void refine(const Cell& c, bool guarded, std::uint32_t peaks);
+  bool settle(const Cell& c, bool guarded);
   void mark(const Cell& c, std::uint16_t leaf);
   void choose_cheap_path(std::int64_t err0);
   int peak_level(const Cell& c, std::uint32_t& peaks);
-  void add_leaf(const Cell& c, bool quadratic);
+  void add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[]);
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
@@ -170,7 +174,11 @@ class KbAdaptiveMethod final : public ShadingMethod {
   int leaf_count_ = 0;
   Crossing crossings_[kMaxCrossings];
   int crossing_count_ = 0;
-  int terminators_ = 0;                                // lights with their terminator handled
+  int terminators_ = 0;           // lights with their terminator handled
+  bool every_terminator_ = true;  // no light's terminator left as a kink in the samples
+  // The samples have no kink (every terminator handled, and no specular kink at N·H = 0, which
+  // max(0, N·H)^n has for n = 1): the h³ law holds for refine's unchecked children.
+  bool smooth_ = true;
   std::uint32_t terminator_mask_ = 0;                  // those lights (PointShader's light numbers)
   std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
   std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_

@@ -16,6 +16,7 @@
 #include "firmware/kb/kb_adaptive.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <utility>
 
 #include "firmware/interp.hpp"
@@ -219,21 +220,75 @@ std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
   const std::int64_t s[6] = {v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]};
   return (worst_point_error(s, v, ch, std::make_index_sequence<9>{}) + 7) / 8;
 }
+
+enum class TerminatorSign : std::uint8_t { kLit, kDark, kCrossing };
+
+// How a terminator's N·L behaves over a cell, from its six samples: the exact N·L keeps its sign
+// where the quadratic through them does over the cell (their range widened by the quadratic's
+// departure from the vertex plane), widened again by a bound on the quadratic's error (err: its
+// error at the cell's check points, or its parent's) and 2^-12.
+TerminatorSign terminator_sign(const Samples6& samples, std::int64_t err, LocalQuadratic& nl) {
+  nl = fit_quadratic(samples);
+  std::int64_t lo = samples.g[0], hi = samples.g[0];
+  for (int k = 1; k < 6; ++k) {
+    lo = samples.g[k] < lo ? samples.g[k] : lo;
+    hi = samples.g[k] > hi ? samples.g[k] : hi;
+  }
+  const std::int64_t slack = curvature_bound(nl) + err + (std::int64_t{1} << 12);
+  if (lo - slack > 0) return TerminatorSign::kLit;
+  if (hi + slack < 0) return TerminatorSign::kDark;
+  return TerminatorSign::kCrossing;
+}
 }  // namespace
 
 // The error estimate of a cell, Q.14 levels: the worst colour channel, plus for each terminator
-// its N·L error (Q.24) times its heaviest channel weight — max(0, ·) is 1-Lipschitz.
-std::int64_t KbAdaptiveMethod::check_error(const Cell& cell) {
+// that is not lit over the whole cell its N·L error (Q.24) times its heaviest channel weight —
+// max(0, ·) is 1-Lipschitz. A lit one adds nothing: its unclamped diffuse in the colours is the
+// exact one there (add_leaf makes the same test).
+// nl_error[t]: terminator t's N·L error at the check points (Q.24), for add_leaf.
+std::int64_t KbAdaptiveMethod::check_error(const Cell& cell, std::int64_t nl_error[]) {
   const std::int32_t* v[15];
   cell_points(cell, v);
+  std::int64_t crossing = 0;
+  std::uint32_t dark = 0;
+  for (int t = 0; t < terminators_; ++t) {
+    const std::int64_t err = channel_error(v, 3 + t);
+    nl_error[t] = err;
+    const int ch = 3 + t;
+    LocalQuadratic nl;
+    const TerminatorSign sign = terminator_sign(
+        Samples6{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}}, err, nl);
+    if (sign == TerminatorSign::kDark) dark |= 1u << t;
+    if (sign == TerminatorSign::kCrossing)
+      crossing += (err * term_worst_[t] + (std::int64_t{1} << 24) - 1) >> 24;
+  }
+  // The colours as the leaf will have them: without the diffuse of the lights dark over the cell
+  // (add_leaf takes it off the quadratic's coefficients, rounded apart: within a few 2^-14 of a
+  // level of these points' values).
+  std::int32_t adjusted[15][3];
+  const std::int32_t* a[15];
+  if (dark != 0) {
+    for (int k = 0; k < 15; ++k) {
+      for (int ch = 0; ch < 3; ++ch) adjusted[k][ch] = v[k][ch];
+      a[k] = adjusted[k];
+    }
+    for (std::uint32_t m = dark; m != 0; m &= m - 1) {
+      const int t = std::countr_zero(m);
+      const std::int64_t w0 = term_weight_[t][0], w1 = term_weight_[t][1], w2 = term_weight_[t][2];
+      for (int k = 0; k < 15; ++k) {
+        const std::int64_t nl = v[k][3 + t];
+        adjusted[k][0] -= static_cast<std::int32_t>((w0 * nl) >> 24);
+        adjusted[k][1] -= static_cast<std::int32_t>((w1 * nl) >> 24);
+        adjusted[k][2] -= static_cast<std::int32_t>((w2 * nl) >> 24);
+      }
+    }
+  }
   std::int64_t worst = 0;
   for (int ch = 0; ch < 3; ++ch) {
-    const std::int64_t e = channel_error(v, ch);
+    const std::int64_t e = channel_error(dark != 0 ? a : v, ch);
     if (e > worst) worst = e;
   }
-  for (int t = 0; t < terminators_; ++t)
-    worst += (channel_error(v, 3 + t) * term_worst_[t] + (std::int64_t{1} << 24) - 1) >> 24;
-  return worst;
+  return worst + crossing;
 }
 
 namespace {
@@ -276,7 +331,8 @@ void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
 // Makes c a leaf: its quadratics, or per-pixel evaluation. A terminator whose N·L keeps one
 // sign over the cell needs no clamp there: lit, its unclamped diffuse is exact; dark, the
 // exact diffuse is 0, so its N·L quadratic times the weights is taken off the colours'.
-void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
+// nl_error[t]: a bound on terminator t's N·L error at the check points (check_error's).
+void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[]) {
   if (path_ == Path::kSubdivided) ++counters_->subtriangles;  // (not a whole-triangle leaf)
   if (!quadratic) ++counters_->subtriangles_exact;
   Leaf& leaf = leaves_[leaf_count_];
@@ -290,26 +346,15 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
     const std::int64_t du = du_ * scale, dv = dv_ * scale;
     LocalQuadratic q[3];
     for (int ch = 0; ch < 3; ++ch) q[ch] = fit_quadratic(samples_of(c, ch));
-    const std::int32_t* points[15];
-    if (terminators_ > 0) cell_points(c, points);
     // The crossings go straight into the pool, past its used part (committed below if they all
     // fit): a local array of kMaxTerminators of them was 1.4 KB of a small part's stack.
     int crossings = 0;
     bool pool_full = false;
     for (int t = 0; t < terminators_; ++t) {
-      const Samples6 samples = samples_of(c, 3 + t);
-      const LocalQuadratic nl = fit_quadratic(samples);
-      std::int64_t lo = samples.g[0], hi = samples.g[0];
-      for (int k = 1; k < 6; ++k) {
-        lo = samples.g[k] < lo ? samples.g[k] : lo;
-        hi = samples.g[k] > hi ? samples.g[k] : hi;
-      }
-      // The exact N·L keeps its sign where the quadratic's range, widened by the quadratic's
-      // departure from the vertex plane and by its error at the check points, does.
-      const std::int64_t slack =
-          curvature_bound(nl) + channel_error(points, 3 + t) + (std::int64_t{1} << 12);
-      if (lo - slack > 0) continue;  // lit over the cell
-      if (hi + slack < 0) {          // dark over the cell
+      LocalQuadratic nl;
+      const TerminatorSign sign = terminator_sign(samples_of(c, 3 + t), nl_error[t], nl);
+      if (sign == TerminatorSign::kLit) continue;
+      if (sign == TerminatorSign::kDark) {
         for (int ch = 0; ch < 3; ++ch) {
           const std::int64_t w = term_weight_[t][ch];
           q[ch].c0 -= (w * nl.c0) >> 24;
@@ -353,18 +398,41 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic) {
 // while `guarded`: a cell that passes guarantees it for its descendants) and its check passes; at
 // the deepest level a cell that fails either is evaluated per pixel. `peaks`: the lights whose
 // highlight may lie on the parent — no other can lie on c, which lies inside it.
+//
+// A cell of the level above the deepest that misses by at most kTrustedMiss makes its four
+// children leaves without checking them: their six samples are its fifteen points, and by the
+// h³ law of quadratic interpolation halving the size divides a smooth error by 8 — their own check
+// points, a quarter of the samples of the deepest level, would cost more than they tell
+// (docs/KUIJK-BLAKE.md). Only where the samples have no kink (smooth_), across which halving
+// divides the error by 2 only; the children's terminators are classified with the parent's N·L
+// errors, larger than theirs.
 void KbAdaptiveMethod::refine(const Cell& c, bool guarded, std::uint32_t peaks) {
   if (guarded && peak_level(c, peaks) == c.level) guarded = false;
-  if (!guarded || c.level == kMaxLevel) {
-    const bool passes = !guarded && check_error(c) <= kEstimateBudget;
-    if (passes || c.level == kMaxLevel) {
-      add_leaf(c, passes);
-      return;
-    }
-  }
+  if ((!guarded || c.level == kMaxLevel) && settle(c, guarded)) return;
   Cell kids[4];
   children_of(c, kids);
   for (const Cell& k : kids) refine(k, guarded, peaks);
+}
+
+// refine's leaves: c, or its children unchecked, when its check allows (false: refine further).
+// Not inlined, so that the check's and the leaf's frames are not stacked once per level of
+// refine's recursion (a small part's stack: docs/TARGET.md).
+[[gnu::noinline]] bool KbAdaptiveMethod::settle(const Cell& c, bool guarded) {
+  std::int64_t nl_error[kMaxTerminators] = {};
+  const std::int64_t err = guarded ? 0 : check_error(c, nl_error);
+  const bool passes = !guarded && err <= kEstimateBudget;
+  if (passes || c.level == kMaxLevel) {
+    add_leaf(c, passes, nl_error);
+    return true;
+  }
+  if (smooth_ && c.level == kMaxLevel - 1 && err <= kTrustedMiss) {
+    counters_->subtriangles_unchecked += 4;
+    Cell kids[4];
+    children_of(c, kids);
+    for (const Cell& k : kids) add_leaf(k, true, nl_error);
+    return true;
+  }
+  return false;
 }
 
 // Level 0 passed its check (estimate err0): the simplest of constant, linear and quadratic
@@ -433,10 +501,12 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   dv_ = fx::div<local_t>(fx::int_q::from_raw(de2_), fx::int_q::from_raw(tri.area2)).raw();
   area_recip_ = (std::int64_t{1} << 60) / tri.area2;
   find_terminators(tri);
+  smooth_ = every_terminator_ && (ctx.material.ks.raw() == 0 || ctx.material.n >= 2);
   prepare_edge_keys(tri);
   std::uint32_t peaks = ~std::uint32_t{0};  // every light, until the guard narrows it
   const int guard = peak_level(kWhole, peaks);
-  const std::int64_t err0 = guard == 0 ? check_error(kWhole) : 0;
+  std::int64_t nl_error[kMaxTerminators] = {};
+  const std::int64_t err0 = guard == 0 ? check_error(kWhole, nl_error) : 0;
   if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
     choose_cheap_path(err0);
   } else if (guard == 0 && err0 <= kEstimateBudget) {
@@ -446,7 +516,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     level_ = kMaxLevel;
     leaf_count_ = 0;
     crossing_count_ = 0;
-    add_leaf(kWhole, true);
+    add_leaf(kWhole, true, nl_error);
   } else {
     // The cost of refining, guessed from the guard and from the h³ law of quadratic
     // interpolation (each halving of the size divides the error by 8) applied to err0,

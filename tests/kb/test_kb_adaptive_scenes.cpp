@@ -55,7 +55,7 @@ TEST_P(KbAdaptiveScene, SkippingBudgetAccuracy) {
   const Comparison a = against_phong(device, adaptive);
   std::printf(
       "%-24s cc %.5f max %3d | vs exact: max %d | constant %llu linear %llu quadratic %llu "
-      "subdivided %llu (cells %llu, exact cells %llu) exact %llu\n",
+      "subdivided %llu (cells %llu, exact cells %llu, unchecked %llu) exact %llu\n",
       name.c_str(), a.color_correctness, a.max_abs, budget.max_abs,
       static_cast<unsigned long long>(counter(adaptive, "adaptive_constant")),
       static_cast<unsigned long long>(counter(adaptive, "adaptive_linear")),
@@ -63,6 +63,7 @@ TEST_P(KbAdaptiveScene, SkippingBudgetAccuracy) {
       static_cast<unsigned long long>(counter(adaptive, "adaptive_subdivided")),
       static_cast<unsigned long long>(counter(adaptive, "subtriangles")),
       static_cast<unsigned long long>(counter(adaptive, "subtriangles_exact")),
+      static_cast<unsigned long long>(counter(adaptive, "subtriangles_unchecked")),
       static_cast<unsigned long long>(counter(adaptive, "adaptive_exact")));
   if (stress) {
     const Comparison g = against_phong(device, render(device, scene, "gouraud"));
