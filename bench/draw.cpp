@@ -4,7 +4,7 @@
 // libhwy's start-up code executes rdtscp, which valgrind rejects on processors that do not
 // advertise it.
 //
-//   tinyphong-draw scenes/teapot.json --method kb-adaptive [--size 1024x1024]
+//   tinyphong-draw scenes/teapot.json --method kb-adaptive [--size 1024x1024] [--budget B]
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "firmware/types.hpp"
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
 
@@ -19,13 +20,18 @@ int main(int argc, char** argv) {
   using namespace tp::host;
   CLI::App app{"render a scene once with the device and print its counters"};
   std::string scene_file, method, size;
+  int budget = 0;
   app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
   app.add_option("--method", method, "shading method (tinyphong methods)");
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
+  app.add_option("--budget", budget,
+                 "kb-adaptive's error budget in output levels (default: the scene's)")
+      ->check(CLI::Range(1, static_cast<int>(tp::fw::kMaxBudgetLevels)));
   CLI11_PARSE(app, argc, argv);
   try {
     Scene scene = load_scene(scene_file);
     if (!method.empty()) scene.method = method;
+    if (budget != 0) scene.budget = budget;
     if (!size.empty()) {
       int w = 0, h = 0;
       char x = 0;

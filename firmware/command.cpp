@@ -27,6 +27,7 @@ std::uint32_t payload_words(Opcode op) {
     case Opcode::kSetMethod:
     case Opcode::kSetCulling:
     case Opcode::kSetDepthTest:
+    case Opcode::kSetBudget:
     case Opcode::kClear: return 1;
     case Opcode::kSetMaterial: return 9;
     case Opcode::kSetLight: return 11;
@@ -38,7 +39,7 @@ std::uint32_t payload_words(Opcode op) {
   return 0;
 }
 
-bool known(std::uint32_t op) { return op >= 1 && op <= 15; }
+bool known(std::uint32_t op) { return op >= 1 && op <= 16; }
 
 Mat4 matrix(std::span<const std::uint32_t> p) {
   Mat4 m;
@@ -115,6 +116,7 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
       bool on = false;
       return flag(p[0], on) ? set_depth_test(on) : fail(Error::kBadArgument);
     }
+    case Opcode::kSetBudget: return set_budget(p[0]);
     case Opcode::kUploadVertices: {
       if (p.size() < 2 || (p.size() - 2) % 6 != 0 || (p.size() - 2) / 6 != p[1])
         return fail(Error::kBadLength);

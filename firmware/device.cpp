@@ -459,6 +459,14 @@ Error Device::set_depth_test(bool on) {
   return ok();
 }
 
+// Not a revision of the shading state: what the methods cache from it (kb-adaptive's boundary
+// samples, PointShader's lights) does not depend on the budget.
+Error Device::set_budget(std::uint32_t levels) {
+  if (levels < 1 || levels > kMaxBudgetLevels) return fail(Error::kBadArgument);
+  state_.shading.budget_levels = levels;
+  return ok();
+}
+
 Error Device::validate_vertex(const Vertex& v) {
   if (!coord_ok(v.position.x) || !coord_ok(v.position.y) || !coord_ok(v.position.z))
     return Error::kOutOfRange;

@@ -94,6 +94,7 @@ enum class Opcode : std::uint16_t {
   kClear = 13,             // 0x00RRGGBB                                                 1
   kDraw = 14,              // first, count                                               2
   kEndFrame = 15,          //                                                            0
+  kSetBudget = 16,         // error budget in output levels, 1 .. kMaxBudgetLevels      1
 };
 inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_words) {
   return static_cast<std::uint32_t>(op) | (payload_words << 16);
@@ -125,6 +126,8 @@ class Device {
   Error set_method(Method m);
   Error set_culling(bool on);
   Error set_depth_test(bool on);
+  // The error budget (ShadeContext::budget_levels): kBadArgument outside 1 .. kMaxBudgetLevels.
+  Error set_budget(std::uint32_t levels);
   Error upload_vertices(std::uint32_t first, std::span<const Vertex> vertices);
   Error upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);
   Error clear(Rgb8 colour);  // colour, depth = far, counts = 0, counters reset (not frames)

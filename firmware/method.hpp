@@ -84,6 +84,9 @@ struct ShadeContext {
   MaterialCmd material;
   LightState lights[kMaxLights];
   EyeMode eye = EyeMode::kInfinite;
+  // The error budget of the methods that choose their evaluation under one (kb-adaptive): every
+  // pixel within this many output levels of their exact evaluation; 1 to kMaxBudgetLevels.
+  std::uint32_t budget_levels = 1;
   Counters* counters = nullptr;
   // Raised by every successful set_material, set_light and set_eye: a method that caches values
   // of the shading state across triangles and draws compares this, not the state's bytes

@@ -59,6 +59,7 @@ enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 // Device limits. The bound arguments are in raster.cpp (coordinates) and device.cpp (inputs).
 inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
 inline constexpr std::uint32_t kMaxLights = 16;
+inline constexpr std::uint32_t kMaxBudgetLevels = 16;  // largest error budget (set_budget)
 // Blinn-Phong n: every method evaluates any exponent up to the (a, b) fits' range
 // (cosn::kMaxN, checked in firmware/cosn.hpp); the power by repeated squaring takes 14 steps.
 inline constexpr std::uint32_t kMaxExponent = 10000;

@@ -43,6 +43,7 @@ std::string payload_name(std::uint32_t opcode) {
     case fw::Opcode::kClear: return "clear";
     case fw::Opcode::kDraw: return "draw";
     case fw::Opcode::kEndFrame: return "end_frame";
+    case fw::Opcode::kSetBudget: return "set_budget";
   }
   return "unknown opcode " + std::to_string(opcode);
 }
@@ -102,6 +103,11 @@ void CommandWriter::set_method(fw::Method m) {
 void CommandWriter::set_culling(bool on) {
   header(fw::Opcode::kSetCulling, 1);
   words_.push_back(on ? 1u : 0u);
+}
+
+void CommandWriter::set_budget(std::uint32_t levels) {
+  header(fw::Opcode::kSetBudget, 1);
+  words_.push_back(levels);
 }
 
 void CommandWriter::upload_vertices(std::uint32_t first, std::span<const fw::Vertex> vertices) {

@@ -29,6 +29,7 @@ class CommandWriter {
   void set_light(const fw::LightCmd& c);
   void set_method(fw::Method m);
   void set_culling(bool on);
+  void set_budget(std::uint32_t levels);
   // Uploads longer than one command can carry (the payload length is 16 bits) are split.
   void upload_vertices(std::uint32_t first, std::span<const fw::Vertex> vertices);
   void upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);

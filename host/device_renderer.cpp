@@ -255,6 +255,7 @@ std::vector<std::uint32_t> DeviceRenderer::setup_commands(const Scene& scene,
     w.set_light(l);
   }
   w.set_method(p.method);
+  w.set_budget(static_cast<std::uint32_t>(scene.budget));
   w.set_culling(scene.cull_backfaces);
   w.upload_vertices(0, p.vertices);
   w.upload_indices(0, p.indices);

@@ -75,7 +75,7 @@ class DeviceRenderer {
                                   Interpolation interpolation = Interpolation::Phong) const;
 
   // The command words of one frame as a fresh device needs them: the scene's setup (viewport,
-  // capacity, projection, eye, material, lights, method, culling, uploads) then the frame's
+  // capacity, projection, eye, material, lights, method, budget, culling, uploads) then the frame's
   // (clear, model-view and draw per mesh, end_frame). set_scene and render run exactly these
   // words through Device::execute, so a recorded stream cannot drift from a render.
   std::vector<std::uint32_t> record(double model_rotation_radians = 0.0) const;

@@ -259,8 +259,8 @@ Scene read_scene(const Reader& r, const json& j) {
   Scene s;
   s.file = r.file;
   r.keys(j, "",
-         {"name", "resolution", "camera", "lights", "material", "meshes", "method", "background",
-          "cull"},
+         {"name", "resolution", "camera", "lights", "material", "meshes", "method", "budget",
+          "background", "cull"},
          {"camera", "lights", "meshes"});
   if (j.contains("name")) s.name = r.string(j["name"], "/name");
   if (j.contains("resolution")) {
@@ -281,6 +281,8 @@ Scene read_scene(const Reader& r, const json& j) {
   if (j.contains("material")) s.material = read_material(r, j["material"], "/material");
   s.meshes = read_meshes(r, j["meshes"]);
   if (j.contains("method")) s.method = r.string(j["method"], "/method");
+  if (j.contains("budget"))
+    s.budget = r.integer(j["budget"], "/budget", 1, static_cast<int>(fw::kMaxBudgetLevels));
   if (j.contains("background")) s.background = r.vec3(j["background"], "/background", 0, 1);
   if (j.contains("cull")) s.cull_backfaces = r.boolean(j["cull"], "/cull");
   return s;

@@ -102,6 +102,9 @@ struct Scene {
   Material material;
   std::vector<MeshSpec> meshes;
   std::string method = "phong";
+  // The error budget in output levels, for the methods that choose their evaluation under one
+  // (kb-adaptive; 1 .. fw::kMaxBudgetLevels).
+  int budget = 1;
   glm::dvec3 background{0, 0, 0};
   bool cull_backfaces = true;
 };

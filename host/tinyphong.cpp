@@ -40,9 +40,19 @@ using namespace tp::host;
 struct SceneOptions {
   std::string scene;
   std::string method;
+  int budget = 0;    // 0: the scene's
   std::string size;  // "WxH"
   double rotate_deg = 0;
 };
+
+// --budget, for the commands that run the device (render, record).
+void add_budget_option(CLI::App* cmd, SceneOptions& o) {
+  const int most = static_cast<int>(tp::fw::kMaxBudgetLevels);
+  cmd->add_option("--budget", o.budget,
+                  "error budget in output levels for kb-adaptive, 1.." + std::to_string(most) +
+                      " (default: the scene's, else 1)")
+      ->check(CLI::Range(1, most));
+}
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("scene", o.scene, "scene file (JSON), e.g. scenes/teapot.json")
@@ -55,6 +65,7 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
 Scene load(const SceneOptions& o) {
   Scene s = load_scene(o.scene);
   if (!o.method.empty()) s.method = o.method;
+  if (o.budget != 0) s.budget = o.budget;
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;
@@ -410,6 +421,7 @@ int main(int argc, char** argv) {
   auto* render = app.add_subcommand("render", "render a scene with the emulated device");
   add_scene_options(render, render_opts);
   render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)");
+  add_budget_option(render, render_opts);
   render->add_option("-o,--output", render_out, "PNG file to write");
   render->add_flag("--compare", render_compare,
                    "also render the double reference and print the error metrics");
@@ -449,6 +461,7 @@ int main(int argc, char** argv) {
   record->add_option("--rotate", rec.options.rotate_deg,
                      "rotate the objects about the world y axis (degrees)");
   record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
+  add_budget_option(record, rec.options);
   record->add_option("-o,--output", rec.out, ".tpcmd file to write (one scene)");
   record->add_option("--dir", rec.dir, "write DIR/<scene>.tpcmd for each scene")
       ->check(CLI::ExistingDirectory);

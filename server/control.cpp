@@ -16,7 +16,8 @@ using nlohmann::json;
 // Allowed fields per message type; anything else is refused by name. A switch, so that a new
 // type without an entry is a compiler warning.
 std::span<const std::string_view> allowed_fields(ControlType t) {
-  static constexpr std::string_view method[] = {"method"}, exponent[] = {"n", "a", "b"},
+  static constexpr std::string_view method[] = {"method"}, levels[] = {"levels"},
+                                    exponent[] = {"n", "a", "b"},
                                     material[] = {"ka", "kd", "ks", "color"},
                                     add_light[] = {"kind", "vector", "color"}, index[] = {"index"},
                                     set_light[] = {"index", "kind", "vector", "color"},
@@ -24,6 +25,7 @@ std::span<const std::string_view> allowed_fields(ControlType t) {
                                     ack[] = {"id", "kind"};
   switch (t) {
     case ControlType::set_method: return method;
+    case ControlType::set_budget: return levels;
     case ControlType::set_exponent: return exponent;
     case ControlType::set_material: return material;
     case ControlType::add_light: return add_light;
@@ -136,6 +138,7 @@ Result check_combination(const json& j, Command& c) {
   };
   switch (c.type) {
     case ControlType::set_method: return need("method");
+    case ControlType::set_budget: return need("levels");
     case ControlType::set_scene: return need("name");
     case ControlType::set_resolution: {
       Result r = need("width");
@@ -208,6 +211,7 @@ Result read_fields(const json& j, Command& c) {
       get_bool(j, "on", c.on),
       get_kind(j, c),
       get_int(j, "index", 0, static_cast<long>(fw::kMaxLights) - 1, c.index),
+      get_int(j, "levels", 1, static_cast<long>(fw::kMaxBudgetLevels), c.levels),
       get_int(j, "width", kMinSize, kMaxSize, c.width),
       get_int(j, "height", kMinSize, kMaxSize, c.height),
   };
@@ -283,6 +287,7 @@ Result apply_control(const Command& c, FrameSource& src, LoopFlags& flags, bool&
     case ControlType::step: step_requested = true; return Result::success();
     case ControlType::set_scene: return src.load_scene(*c.text);
     case ControlType::set_method: s.method = *c.text; break;
+    case ControlType::set_budget: s.budget = *c.levels; break;
     case ControlType::set_exponent:
       s.use_ab = c.a.has_value();
       if (s.use_ab) {

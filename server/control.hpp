@@ -37,7 +37,7 @@ struct Command {
   std::optional<double> n, a, b, ka, kd, ks;
   std::optional<std::array<double, 3>> color, vector;
   std::optional<bool> on, point;
-  std::optional<int> index, width, height;
+  std::optional<int> index, width, height, levels;
   std::uint32_t ack_id = 0;
   int ack_kind = 0;
 };

@@ -7,8 +7,9 @@ namespace tp::server {
 namespace {
 
 // One table for both directions, so a type's wire string is written once.
-constexpr std::array<std::pair<ControlType, std::string_view>, 14> kNames = {{
+constexpr std::array<std::pair<ControlType, std::string_view>, 15> kNames = {{
     {ControlType::set_method, "set_method"},
+    {ControlType::set_budget, "set_budget"},
     {ControlType::set_exponent, "set_exponent"},
     {ControlType::set_material, "set_material"},
     {ControlType::add_light, "add_light"},

@@ -10,6 +10,7 @@ namespace tp::server {
 enum class ControlType {
   unknown = 0,  // not a type the server knows: refused with "unknown message type '…'"
   set_method,
+  set_budget,
   set_exponent,
   set_material,
   add_light,

@@ -15,6 +15,7 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
   ViewSettings s;
   s.scene = name;
   s.method = sc.method;
+  s.budget = sc.budget;
   const host::Material& m = sc.material;
   s.use_ab = m.a.has_value() && m.b.has_value();
   s.n = m.n;
@@ -35,6 +36,7 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
 
 host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
   sc.method = s.method;
+  sc.budget = s.budget;
   host::Material& m = sc.material;
   if (s.use_ab) {
     m.a = s.a;
@@ -104,9 +106,10 @@ Result DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
     return Result::failure("unknown scene '" + name + "'");
   try {
-    // The viewer keeps the method it shows; the scene file's own "method" is for the CLI.
+    // The viewer keeps the method and budget it shows; the scene file's own are for the CLI.
     host::Scene sc = host::load_scene(dir_ / (name + ".json"));
     sc.method = settings_.method;
+    sc.budget = settings_.budget;
     return install(std::move(sc), name);
   } catch (const std::exception& e) {
     return Result::failure(e.what());

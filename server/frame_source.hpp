@@ -24,6 +24,7 @@ struct LightSetting {
 struct ViewSettings {
   std::string scene;
   std::string method;
+  int budget = 1;       // kb-adaptive's error budget in output levels (fw::kMaxBudgetLevels)
   bool use_ab = false;  // the material gives (a, b) instead of n (Kuijk-Blake's f(θ))
   double n = 20, a = 0, b = 0;
   double ka = 0.1, kd = 0.6, ks = 0.4;

@@ -95,6 +95,7 @@ void RenderLoop::publish_state() {
   json j = {{"type", "state"},
             {"scene", s.scene},
             {"method", s.method},
+            {"budget", s.budget},
             {"use_ab", s.use_ab},
             {"n", s.n},
             {"a", s.a},

@@ -10,7 +10,8 @@
 //     triangles with fewer pixels than refining would take samples, and on deepest-level cells
 //     that still miss.
 // The exact evaluation (firmware/point_shader.hpp) is Blinn-Phong at the perspective-correct point,
-// and the budget bounds the difference from it: every pixel of a cheap path within kBudgetLevels.
+// and the budget bounds the difference from it: every pixel of a cheap path within
+// ShadeContext::budget_levels output levels of it.
 //
 // The error estimate (docs/KUIJK-BLAKE.md): the quadratic is compared with exact values at the
 // nine other points of the quarter lattice (the children's samples, so refining reuses them), and
@@ -27,16 +28,16 @@
 
 namespace tp::fw::kb {
 
-// The error budget: every pixel of a cheap path within 1 output level of the exact per-pixel
-// evaluation. The estimate (check points) must stay below it with a margin for what lies between
-// the check points: 0.375 level keeps every pixel of 60,000 random triangles within the budget,
-// 0.61 does not (tests/kb/test_kb_adaptive.cpp).
-inline constexpr std::int32_t kBudgetLevels = 1;
-inline constexpr std::int32_t kEstimateBudget = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
+// The error budget: every pixel of a cheap path within B output levels of the exact per-pixel
+// evaluation, B = ShadeContext::budget_levels (1 unless set_budget changed it). The estimate (check
+// points) must stay below it with a margin for what lies between the check points: 0.375·B level
+// keeps every pixel of 300,000 random triangles within the budget at B = 1, 0.61 does not
+// (tests/kb/test_kb_adaptive.cpp, which also measures B = 2, 4 and 16).
+inline constexpr std::int32_t kEstimatePerLevel = (1 << kSampleFrac) * 3 / 8;  // 0.375 level, Q.14
 inline constexpr int kMaxLevel = 4;  // deepest subdivision: 4^4 = 256 sub-triangles
-// A cell of level kMaxLevel − 1 whose estimate is within this makes its children leaves unchecked
-// (refine): under the h³ law their error is an eighth of it, 0.094 level.
-inline constexpr std::int32_t kTrustedMiss = 2 * kEstimateBudget;  // 0.75 level, Q.14
+// A cell of level kMaxLevel − 1 whose estimate is within this (times B) makes its children leaves
+// unchecked (refine): under the h³ law their error is an eighth of it, 0.094·B level.
+inline constexpr std::int32_t kTrustedMissPerLevel = 2 * kEstimatePerLevel;  // 0.75 level, Q.14
 inline constexpr int kLatticeRes = 4 << kMaxLevel;  // quarter lattice of the deepest level
 inline constexpr int kLatticePoints = (kLatticeRes + 1) * (kLatticeRes + 2) / 2;
 // Lights per triangle whose terminator (N·L = 0, the kink of max(0, N·L)) is handled exactly:
@@ -179,6 +180,8 @@ class KbAdaptiveMethod final : public ShadingMethod {
   // The samples have no kink (every terminator handled, and no specular kink at N·H = 0, which
   // max(0, N·H)^n has for n = 1): the h³ law holds for refine's unchecked children.
   bool smooth_ = true;
+  std::int64_t estimate_budget_ = kEstimatePerLevel;   // the check's threshold for this budget
+  std::int64_t trusted_miss_ = kTrustedMissPerLevel;   // refine's, for unchecked children
   std::uint32_t terminator_mask_ = 0;                  // those lights (PointShader's light numbers)
   std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
   std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_

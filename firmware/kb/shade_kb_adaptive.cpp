@@ -399,7 +399,7 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic, const std::int64_
 // the deepest level a cell that fails either is evaluated per pixel. `peaks`: the lights whose
 // highlight may lie on the parent — no other can lie on c, which lies inside it.
 //
-// A cell of the level above the deepest that misses by at most kTrustedMiss makes its four
+// A cell of the level above the deepest that misses by at most trusted_miss_ makes its four
 // children leaves without checking them: their six samples are its fifteen points, and by the
 // h³ law of quadratic interpolation halving the size divides a smooth error by 8 — their own check
 // points, a quarter of the samples of the deepest level, would cost more than they tell
@@ -420,12 +420,12 @@ void KbAdaptiveMethod::refine(const Cell& c, bool guarded, std::uint32_t peaks) 
 [[gnu::noinline]] bool KbAdaptiveMethod::settle(const Cell& c, bool guarded) {
   std::int64_t nl_error[kMaxTerminators] = {};
   const std::int64_t err = guarded ? 0 : check_error(c, nl_error);
-  const bool passes = !guarded && err <= kEstimateBudget;
+  const bool passes = !guarded && err <= estimate_budget_;
   if (passes || c.level == kMaxLevel) {
     add_leaf(c, passes, nl_error);
     return true;
   }
-  if (smooth_ && c.level == kMaxLevel - 1 && err <= kTrustedMiss) {
+  if (smooth_ && c.level == kMaxLevel - 1 && err <= trusted_miss_) {
     counters_->subtriangles_unchecked += 4;
     Cell kids[4];
     children_of(c, kids);
@@ -445,8 +445,8 @@ void KbAdaptiveMethod::choose_cheap_path(std::int64_t err0) {
     const Samples6 samples = samples_of(kWhole, c);
     q[c] = fit_quadratic(samples);
     const LocalQuadratic lin = linear_of(q[c]);
-    constant = constant && err0 + curvature_bound(q[c]) + spread_bound(lin) <= kEstimateBudget;
-    linear = linear && err0 + curvature_bound(q[c]) <= kEstimateBudget;
+    constant = constant && err0 + curvature_bound(q[c]) + spread_bound(lin) <= estimate_budget_;
+    linear = linear && err0 + curvature_bound(q[c]) <= estimate_budget_;
   }
   if (constant) {
     path_ = Path::kConstant;
@@ -502,14 +502,17 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   area_recip_ = (std::int64_t{1} << 60) / tri.area2;
   find_terminators(tri);
   smooth_ = every_terminator_ && (ctx.material.ks.raw() == 0 || ctx.material.n >= 2);
+  const std::int64_t budget = ctx.budget_levels >= 1 ? ctx.budget_levels : 1;
+  estimate_budget_ = kEstimatePerLevel * budget;
+  trusted_miss_ = kTrustedMissPerLevel * budget;
   prepare_edge_keys(tri);
   std::uint32_t peaks = ~std::uint32_t{0};  // every light, until the guard narrows it
   const int guard = peak_level(kWhole, peaks);
   std::int64_t nl_error[kMaxTerminators] = {};
   const std::int64_t err0 = guard == 0 ? check_error(kWhole, nl_error) : 0;
-  if (guard == 0 && err0 <= kEstimateBudget && terminators_ == 0) {
+  if (guard == 0 && err0 <= estimate_budget_ && terminators_ == 0) {
     choose_cheap_path(err0);
-  } else if (guard == 0 && err0 <= kEstimateBudget) {
+  } else if (guard == 0 && err0 <= estimate_budget_) {
     // One quadratic, with the terminators' clamps: the triangle is its own leaf.
     path_ = Path::kQuadratic;
     ++counters_->adaptive_quadratic;
@@ -523,7 +526,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     // against the pixels: a small triangle is cheaper per pixel.
     int k = guard > 1 ? (guard > kMaxLevel ? kMaxLevel : guard) : 1;
     if (guard == 0)
-      while (k < kMaxLevel && (err0 >> (3 * k)) > kEstimateBudget) ++k;
+      while (k < kMaxLevel && (err0 >> (3 * k)) > estimate_budget_) ++k;
     const std::int64_t pixels = tri.area2 / (2 * 256);
     if (pixels <= lattice_samples_at(k)) {
       path_ = Path::kExact;

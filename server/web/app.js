@@ -214,7 +214,7 @@ function applyState(s) {
   }
   fillSelect('scene', s.scenes, s.scene);
   fillSelect('method', s.methods, s.method);
-  for (const k of ['width', 'height', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
+  for (const k of ['width', 'height', 'budget', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
   setValue('a', Number(s.a).toFixed(4));
   setValue('b', Number(s.b).toFixed(4));
   $('use-ab').checked = s.use_ab;
@@ -272,6 +272,7 @@ function applyStats(s) {
 function wire() {
   $('scene').onchange = (e) => send({ type: 'set_scene', name: e.target.value });
   $('method').onchange = (e) => send({ type: 'set_method', method: e.target.value });
+  $('budget').onchange = (e) => send({ type: 'set_budget', levels: Number(e.target.value) });
   $('apply-size').onclick = () => send({ type: 'set_resolution', width: Number($('width').value), height: Number($('height').value) });
   $('animate').onchange = (e) => send({ type: 'animate', on: e.target.checked });
   $('paused').onchange = (e) => send({ type: 'pause', on: e.target.checked });

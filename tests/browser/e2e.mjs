@@ -3,7 +3,8 @@
 //  1. frames arrive and are painted, and the painted canvas pixels hash (FNV-1a 64, RGB) to the
 //     checksum the server reports for that frame — byte for byte what the server sent;
 //  2. changing the method from the page changes the counters and the image;
-//  3. the reference comparison arrives (reference frame paired with the device frame, error stats);
+//  3. the reference comparison arrives (reference frame paired with the device frame, error stats),
+//     and kb-adaptive's budget set from the page makes it sample less;
 //  4. the page reconnects by itself when the server restarts.
 // Usage: node e2e.mjs <path to tinyphong-server>
 import { spawn } from 'node:child_process';
@@ -110,6 +111,20 @@ try {
         `reference comparison for frame ${e.frame_id}: colour correctness ${e.correctness.toFixed(5)}`);
   const heatPainted = await page.evaluate(() => document.getElementById('heat').width === 320);
   check(heatPainted, 'the difference image is painted');
+
+  // 3b. kb-adaptive's error budget from the page: a larger budget takes fewer exact samples.
+  await page.selectOption('#method', 'kb-adaptive');
+  await page.waitForFunction(() => window.tp.state.method === 'kb-adaptive', null, { timeout: 10000 });
+  const k1 = await settled(page, b.painted.id + 1);
+  check(k1.state.budget === 1, `the budget starts at 1 level (${k1.state.budget})`);
+  await page.fill('#budget', '8');
+  await page.dispatchEvent('#budget', 'change');
+  await page.waitForFunction(() => window.tp.state.budget === 8, null, { timeout: 10000 });
+  const k8 = await settled(page, k1.painted.id + 1);
+  check(k8.painted.checksum === k8.stats.frame.checksum, `at budget 8, painted frame ${k8.painted.id} matches the server's checksum`);
+  const samples = (f) => f.painted.counters.lattice_samples ?? 0;
+  check(samples(k1) > 0 && samples(k8) < samples(k1),
+        `budget 8 samples less than budget 1 (lattice_samples ${samples(k8)} < ${samples(k1)})`);
 
   // 4. Restart the server on the same port: the page reconnects and paints again.
   const port = server.port;

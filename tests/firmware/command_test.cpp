@@ -314,7 +314,11 @@ void expect_stream_refused(const char* what, Error expected, std::vector<std::ui
 
 TEST(CommandStream, MalformedCommandsChangeNothing) {
   expect_stream_refused("opcode 0", Error::kBadOpcode, {0});
-  expect_stream_refused("opcode 16", Error::kBadOpcode, {16});
+  expect_stream_refused("opcode 17", Error::kBadOpcode, {17});
+  expect_stream_refused("budget 0", Error::kBadArgument,
+                        {command_header(Opcode::kSetBudget, 1), 0});
+  expect_stream_refused("budget 17", Error::kBadArgument,
+                        {command_header(Opcode::kSetBudget, 1), kMaxBudgetLevels + 1});
   expect_stream_refused("short eye", Error::kBadLength, {command_header(Opcode::kSetEye, 0)});
   expect_stream_refused("long eye", Error::kBadLength, {command_header(Opcode::kSetEye, 2), 0, 0});
   expect_stream_refused("truncated payload", Error::kBadLength,
@@ -341,6 +345,12 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
   EXPECT_EQ(rig.dev.words_consumed(), 2u);
   EXPECT_FALSE(rig.dev.state().cull_back_faces);
   EXPECT_EQ(rig.dev.state().shading.eye, EyeMode::kInfinite);
+  // A valid budget is the shading state's, from 1 (after construction) up to kMaxBudgetLevels.
+  EXPECT_EQ(rig.dev.state().shading.budget_levels, 1u);
+  EXPECT_EQ(rig.dev.execute(std::vector<std::uint32_t>{command_header(Opcode::kSetBudget, 1),
+                                                       kMaxBudgetLevels}),
+            Error::kOk);
+  EXPECT_EQ(rig.dev.state().shading.budget_levels, kMaxBudgetLevels);
 }
 
 // The counts and ranges of draws and uploads come from the stream: each is checked (in 64-bit

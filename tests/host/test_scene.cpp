@@ -63,7 +63,8 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"missing_key.json", 1, "", "missing key \"camera\""},
         // A repeated key would silently drop its first value; the line is the repeat's.
         Expected{"duplicate_key.json", 7, "/lights/1/position", "duplicate key \"position\""},
-        Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions", "out of range"}));
+        Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions", "out of range"},
+        Expected{"bad_budget.json", 6, "/budget", "out of range"}));
 
 TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
   // nlohmann either refuses 1e999 while parsing or yields infinity; both must be an error on

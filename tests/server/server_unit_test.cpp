@@ -89,6 +89,10 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_method\",\"method\":\"phong\",\"extra\":1}", "unknown field 'extra'"},
       {"{\"type\":\"set_method\"}", "missing 'method'"},
       {"{\"type\":\"set_method\",\"method\":5}", "'method' must be a string"},
+      {"{\"type\":\"set_budget\"}", "missing 'levels'"},
+      {"{\"type\":\"set_budget\",\"levels\":0}", "'levels' out of range"},
+      {"{\"type\":\"set_budget\",\"levels\":17}", "'levels' out of range"},
+      {"{\"type\":\"set_budget\",\"levels\":1.5}", "must be an integer"},
       {"{\"type\":\"set_exponent\",\"n\":0}", "'n' out of range"},
       {"{\"type\":\"set_exponent\",\"n\":10001}", "'n' out of range"},
       {"{\"type\":\"set_exponent\",\"n\":1e400}", "malformed JSON"},
@@ -144,6 +148,8 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_NE(run("{\"type\":\"set_method\",\"method\":\"nope\"}").find("unknown method"),
             std::string::npos);
   EXPECT_EQ(src.settings().method, "rings");
+  EXPECT_EQ(run("{\"type\":\"set_budget\",\"levels\":4}"), "");
+  EXPECT_EQ(src.settings().budget, 4);
   EXPECT_EQ(
       run("{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[1,2,3],\"color\":[0.5,0.5,0.5]}"),
       "");
