@@ -74,7 +74,8 @@ const std::vector<MethodName>& method_names() {
       {"kb-exact", fw::Method::kKuijkBlakeExact,
        "Kuijk-Blake exact angular interpolation (eq. 1), per-pixel CORDIC"},
       {"kb-adaptive", fw::Method::kKuijkBlakeAdaptive,
-       "Kuijk-Blake per triangle under a 1-level budget: quadratic, subdivision or per pixel"},
+       "Kuijk-Blake per triangle under an error budget (1 level unless set): quadratic, "
+       "subdivision or per pixel"},
       {"kb-adaptive-noskip", fw::Method::kKuijkBlakeAdaptiveNoSkip,
        "kb-adaptive with every skip disabled (same image)"},
       {"kb-adaptive-exact", fw::Method::kKuijkBlakeAdaptiveExact,

@@ -124,8 +124,13 @@ Camera read_camera(const Reader& r, const json& j, const std::string& p) {
     c.far = 100;
     const glm::dvec3 fwd = c.target - c.position;
     if (glm::length(fwd) < 1e-9) r.fail(p + "/target", "target equals position");
-    if (glm::length(glm::cross(fwd, c.up)) < 1e-9 * glm::length(fwd) * glm::length(c.up))
+    // lookAt uses only up's direction: kept as a unit vector, so that its products cannot
+    // underflow into a NaN view matrix; a zero (or vanishing) up has no direction at all.
+    const double up_length = glm::length(c.up);
+    if (!(up_length > 1e-100) ||
+        glm::length(glm::cross(glm::normalize(fwd), c.up / up_length)) < 1e-9)
       r.fail(p + "/up", "up is zero or parallel to the viewing direction");
+    c.up /= up_length;
   } else {
     r.fail(p + "/type", "unknown camera type \"" + type + "\" (orthographic, perspective)");
   }

@@ -64,7 +64,10 @@ INSTANTIATE_TEST_SUITE_P(
         // A repeated key would silently drop its first value; the line is the repeat's.
         Expected{"duplicate_key.json", 7, "/lights/1/position", "duplicate key \"position\""},
         Expected{"bad_generator_param.json", 6, "/meshes/0/params/subdivisions", "out of range"},
-        Expected{"bad_budget.json", 6, "/budget", "out of range"}));
+        Expected{"bad_budget.json", 6, "/budget", "out of range"},
+        // Found by fuzz_scene: a zero up passed the parallel test (0 < 0 is false) and made the
+        // view matrix NaN.
+        Expected{"zero_up.json", 6, "/camera/up", "up is zero or parallel"}));
 
 TEST(SceneParse, OverflowingNumberIsRejectedWithItsLine) {
   // nlohmann either refuses 1e999 while parsing or yields infinity; both must be an error on

@@ -122,7 +122,9 @@ TEST(KbAdaptiveBudgetLevels, LargerBudgetsStayWithinThemAndSampleLess) {
       EXPECT_LE(samples, previous) << name << " budget " << budget;
       previous = samples;
     }
-    if (samples_less) EXPECT_LT(previous, counter(one, "lattice_samples")) << name;
+    if (samples_less) {
+      EXPECT_LT(previous, counter(one, "lattice_samples")) << name;
+    }
     scene.budget = 1;
     EXPECT_TRUE(render(device, scene, "kb-adaptive").rgb == one.rgb) << name;
   }
