@@ -2,15 +2,18 @@
 // the error against the double references and the frame time as a ratio to Gouraud measured
 // in the same run (docs/RESULTS.md). Timing: the methods are interleaved round-robin, `--reps`
 // rounds, and each method's median frame time is taken, so that machine noise hits all
-// methods alike.
+// methods alike. `--peer llvmpipe` adds Mesa's llvmpipe (host/llvmpipe.hpp: per-pixel float
+// Blinn-Phong in GLSL, one thread) as one more row, timed in the same rounds.
 //
 //   build/release/bench/tinyphong-results [--scenes a,b] [--methods x,y] [--reps 7] [--size WxH]
+//                                         [--peer llvmpipe]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,6 +21,7 @@
 #include <CLI/CLI.hpp>
 
 #include "host/device_renderer.hpp"
+#include "host/llvmpipe.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
 
@@ -38,6 +42,8 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+constexpr const char* kPeerName = "llvmpipe";
+
 struct Row {
   std::string method;
   Comparison phong, angular;
@@ -51,13 +57,15 @@ int main(int argc, char** argv) {
   CLI::App app{"tinyphong results: error and time ratio per scene and method"};
   std::string scenes_arg = "sphere-32,sphere-40,sphere-512,dodecahedron-30,triangle,teapot";
   std::string methods_arg;
-  std::string size;
+  std::string size, peer;
   int reps = 7;
   app.add_option("--scenes", scenes_arg, "comma-separated scene names from scenes/");
   app.add_option("--methods", methods_arg, "comma-separated methods (default: all)");
   app.add_option("--reps", reps, "timing rounds per method (median taken)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
+  app.add_option("--peer", peer, "also time a peer renderer in the same rounds")
+      ->check(CLI::IsMember({std::string(kPeerName)}));
   CLI11_PARSE(app, argc, argv);
 
   std::vector<std::string> methods = split(methods_arg);
@@ -98,7 +106,27 @@ int main(int argc, char** argv) {
 
     std::map<std::string, std::vector<double>> times;
     std::map<std::string, Row> rows;
+    std::unique_ptr<LlvmpipePeer> llvmpipe;
+    if (!peer.empty()) {
+      try {
+        llvmpipe = std::make_unique<LlvmpipePeer>(scene.width, scene.height);
+        llvmpipe->set_scene(scene);
+      } catch (const PeerError& e) {
+        std::cerr << e.what() << "\n";
+        return 1;
+      }
+    }
     for (int round = 0; round < reps; ++round) {
+      if (llvmpipe) {  // first in the round, so that no method always follows it
+        const PeerFrame f = llvmpipe->render(0.0);
+        times[kPeerName].push_back(f.render_ms);
+        if (round == 0) {
+          Row& r = rows[kPeerName];
+          r.method = kPeerName;
+          r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
+          r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
+        }
+      }
       for (const std::string& m : methods) {
         Scene s = scene;
         s.method = m;
@@ -121,7 +149,9 @@ int main(int argc, char** argv) {
     std::printf(
         "| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
         "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
-    for (const std::string& m : methods) {
+    std::vector<std::string> shown = methods;
+    if (llvmpipe) shown.emplace_back(kPeerName);
+    for (const std::string& m : shown) {
       const Row& r = rows[m];
       const double ms = median(times[m]);
       std::printf("| %s | %.4f | %.1f | %.3f | %d | %.3f / %d | %.2f | %.2f |\n", m.c_str(),

@@ -10,8 +10,8 @@ packages=(
   # host libraries
   libglm-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libboost-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks; Mesa's llvmpipe through OSMesa is the benchmark's peer (host/llvmpipe.hpp)
+  libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev
   # integer-only proof and the Cortex-M images: the cross toolchain
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib binutils-arm-none-eabi
   # the Cortex-M images run under QEMU (tests/target, label target)

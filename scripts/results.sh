@@ -38,8 +38,17 @@ draw). Colour correctness is Vlasic's eq. 6.1, over pixels covered in both image
 8-bit levels. The error figures are deterministic (integer device); the times are not: this
 machine is shared, single ratios move by up to ±30 % between runs.
 
+The \`llvmpipe\` rows are the peer a desktop user would pick instead of the device: Mesa's
+llvmpipe through OSMesa (Debian's libosmesa6-dev), one thread (\`LP_NUM_THREADS=0\`), per-pixel
+float Blinn-Phong in GLSL with the reference's formula (\`host/llvmpipe.hpp\`), timed in the same
+rounds (clear + draws + glFinish) and compared with the references like every method.
+\`tests/scenes/test_llvmpipe_peer.cpp\` checks it against the double reference on the sphere and
+triangle scenes: within 1 level wherever both cover a pixel, coverage differing only on
+silhouette pixels.
+
 Regenerate: \`bash scripts/results.sh --reps $reps\` (it runs
-\`build/release/bench/tinyphong-results --reps $reps [--scenes ...] [--methods ...]\`).
+\`build/release/bench/tinyphong-results --reps $reps [--scenes ...] [--methods ...] --peer
+llvmpipe\`).
 Machine: $(nproc) cores, ${cpu:-unknown CPU}, $(g++ --version | head -1), -O2.
 
 The flat, Gouraud and Phong rows are pinned in \`tests/scenes/test_scene_accuracy.cpp\`; the
@@ -54,7 +63,7 @@ figure than these times) are in the last section, from \`bash scripts/instructio
 
 EOF
   one=$(mktemp)
-  "$bin" --reps "$reps" --scenes "$base" | tee "$one"
+  "$bin" --reps "$reps" --scenes "$base" --peer llvmpipe | tee "$one"
   cat <<EOF
 ### Run time against error (one light, the six scenes above)
 
@@ -78,7 +87,7 @@ Lights as listed in \`scenes/README.md\` (the base light first). Methods: Gourau
 yardstick), exact fixed-point Phong, the three Kuijk-Blake evaluations and kb-adaptive.
 
 EOF
-  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,kb,kb-decomposition,kb-exact,kb-adaptive | tail -n +3
+  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3
   if [ "$instructions" = 1 ]; then
     cat <<EOF
 
