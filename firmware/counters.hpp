@@ -18,8 +18,9 @@ struct Counters {
   std::uint64_t triangles_drawn = 0;       // rasterized (after clipping: one per fan triangle)
   std::uint64_t triangles_skipped = 0;     // a method's setup returned "skip"
   // Raster.
-  std::uint64_t spans = 0;           // non-empty spans handed to a method
-  std::uint64_t pixels_shaded = 0;   // pixels a method computed
+  std::uint64_t spans = 0;           // non-empty spans rasterized
+  std::uint64_t spans_hidden = 0;    // of those, left out by early depth: no pixel visible
+  std::uint64_t pixels_shaded = 0;   // pixels a method was asked for (early depth: visible part)
   std::uint64_t pixels_written = 0;  // pixels that passed the depth test
   // Per-method work.
   std::uint64_t lighting_evaluations = 0;  // full Blinn-Phong evaluations (vertex, centroid, pixel)

@@ -139,6 +139,8 @@ class PixelWriter final : public SpanTarget {
                         (st.depth_test ? 2 : 0) | (counts_ != nullptr ? 1 : 0);
     write_exact_ = kLoops[1][variant];
     write_saturating_ = kLoops[0][variant];
+    // The method is the draw's: whether it takes early depth is decided once.
+    early_depth_ = st.depth_test && d.method().skips_hidden_pixels();
   }
   // The next triangle, set up by method m.
   void begin(const Triangle& t, ShadingMethod& m) {
@@ -148,35 +150,71 @@ class PixelWriter final : public SpanTarget {
     dz_ = zplane_.step_x();
   }
   void span(const Span& s) override {
-    method_->shade_span(s, colours_);
-    const std::int32_t n = s.x1 - s.x0;
     ++spans_;
-    pixels_shaded_ += static_cast<std::uint64_t>(n);
     const std::size_t row = static_cast<std::size_t>(s.y) * width_;
     const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
     const std::int64_t z = zplane_.at(lam) << ScreenPlane::kStepFrac;
-    const Run run{colours_,
+    if (!early_depth_) {
+      method_->shade_span(s, colours_);
+      write_run(row, s.x0, s.x1, z, colours_);
+      return;
+    }
+    Span visible = s;
+    if (!visible_part(visible, z, depth_ + row)) {
+      ++spans_hidden_;
+      return;
+    }
+    method_->shade_span(visible, colours_);
+    // The depth stepped from x0 to the first visible pixel, as the colours are: the same words as
+    // without early depth.
+    const std::int32_t skip = visible.first - visible.x0;
+    write_run(row, visible.first, visible.last, z + dz_ * skip, colours_ + skip);
+  }
+  void flush_counters() const {
+    Counters& c = dev_.counters_;
+    c.spans += spans_;
+    c.spans_hidden += spans_hidden_;
+    c.pixels_shaded += pixels_shaded_;
+    c.pixels_written += pixels_written_;
+  }
+
+ private:
+  // Early depth: narrows s to [first, last), its first and last pixel that pass the depth test
+  // (the same test as the pixel loop's: the span's pixels are distinct, so none of its writes
+  // changes another's outcome); false if none does. Only the hidden ends are scanned, so a
+  // visible span costs two tests.
+  bool visible_part(Span& s, std::int64_t z0, const std::uint32_t* depth) const {
+    constexpr int f = ScreenPlane::kStepFrac;
+    std::int32_t first = s.x0;
+    for (std::int64_t z = z0; !(depth_word(z >> f) < depth[first]); z += dz_)
+      if (++first == s.x1) return false;
+    std::int32_t last = s.x1 - 1;
+    for (std::int64_t z = z0 + dz_ * (last - s.x0); !(depth_word(z >> f) < depth[last]); z -= dz_)
+      --last;
+    s.first = first;
+    s.last = last + 1;
+    return true;
+  }
+  // Depth-tests and writes pixels [first, last) of a row: colours from `colours`, the depth z at
+  // `first` stepped per pixel.
+  void write_run(std::size_t row, std::int32_t first, std::int32_t last, std::int64_t z,
+                 const Rgb8* colours) {
+    const std::int32_t n = last - first;
+    pixels_shaded_ += static_cast<std::uint64_t>(n);
+    const Run run{colours,
                   depth_ + row,
                   colour_ + row * bytes_per_pixel_,
                   counts_ != nullptr ? counts_ + row : nullptr,
                   z,
                   dz_,
-                  s.x0,
-                  s.x1};
+                  first,
+                  last};
     // The depth is linear along the span: when both ends' depth words need no saturation, none
     // does.
     const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
                              depth_in_range((z + dz_ * (n - 1)) >> ScreenPlane::kStepFrac);
     pixels_written_ += exact_depth ? write_exact_(run) : write_saturating_(run);
   }
-  void flush_counters() const {
-    Counters& c = dev_.counters_;
-    c.spans += spans_;
-    c.pixels_shaded += pixels_shaded_;
-    c.pixels_written += pixels_written_;
-  }
-
- private:
   // One span's pixels: colours from the method, the depth plane stepped per pixel.
   struct Run {
     const Rgb8* colours;
@@ -243,6 +281,7 @@ class PixelWriter final : public SpanTarget {
   Device& dev_;
   const Triangle* tri_ = nullptr;
   ShadingMethod* method_ = nullptr;
+  bool early_depth_ = false;  // depth test on and the method skips_hidden_pixels()
   ScreenPlane zplane_;
   std::int64_t dz_ = 0;
   std::size_t width_ = 0, bytes_per_pixel_ = 3;
@@ -251,7 +290,7 @@ class PixelWriter final : public SpanTarget {
   std::uint8_t* colour_ = nullptr;
   std::uint8_t* counts_ = nullptr;  // null unless the write counts are on
   Loop write_exact_ = nullptr, write_saturating_ = nullptr;
-  std::uint64_t spans_ = 0, pixels_shaded_ = 0, pixels_written_ = 0;
+  std::uint64_t spans_ = 0, spans_hidden_ = 0, pixels_shaded_ = 0, pixels_written_ = 0;
 };
 
 Device::Device(std::span<std::byte> memory) {

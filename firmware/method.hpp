@@ -6,7 +6,10 @@
 //      rasterizer is handed to the method's setup() with its three ShadeVertex records;
 //   2. the rasterizer (raster.cpp) walks the edges in y and cuts spans in x (top-left rule);
 //   3. for each span the method's shade_span() writes one colour per pixel of [x0, x1).
-// Depth test and framebuffer writes are the pipeline's, after shade_span.
+// Depth test and framebuffer writes are the pipeline's, after shade_span. Early depth: with the
+// depth test on, the pipeline first finds the span's visible pixels; a method that
+// skips_hidden_pixels() is asked for [first, last) only, and not called at all for a span with
+// no visible pixel (docs/CONVENTIONS.md, "Early depth").
 //
 // Spans carry where their ends lie on the triangle's edges (which edge, parameter along it),
 // so that a method may interpolate its own quantities along the edges in y and then along the
@@ -71,6 +74,10 @@ struct Span {
   std::int32_t y = 0;           // pixel row
   std::int32_t x0 = 0, x1 = 0;  // pixels [x0, x1), x1 > x0, already inside the viewport
   EdgePos left, right;          // the span's ends on the triangle's edges (before the scissor)
+  // The pixels the pipeline needs, x0 <= first < last <= x1: those outside fail the depth test.
+  // The rasterizer sets [x0, x1); early depth narrows it for the methods that
+  // skips_hidden_pixels(), which then need fill only out[first − x0 .. last − x0).
+  std::int32_t first = 0, last = 0;
 };
 
 // What a method may read besides the triangle: material, lights, eye, and the counters.
@@ -98,10 +105,19 @@ class ShadingMethod {
  public:
   // Per-triangle setup. Returns false to skip the triangle (counted as triangles_skipped).
   virtual bool setup(const Triangle& tri, const ShadeContext& ctx) = 0;
-  // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0).
+  // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0); for a method that
+  // skips_hidden_pixels(), of [s.first, s.last) only (the other entries are not read).
   virtual void shade_span(const Span& s, Rgb8* out) = 0;
   // Whether shade_span reads Span::left.t and right.t (see EdgePos).
   virtual bool reads_edge_positions() const { return false; }
+  // Whether shade_span shades only Span [first, last), each pixel exactly as it would in the whole
+  // span (state stepped from x0 is advanced, not restarted), and keeps nothing from one span for
+  // the next — so that early depth may narrow a span and leave out one whose pixels are all
+  // hidden without changing any pixel — and whose pixels cost more than the depth tests that
+  // find the visible ones (two per span). Flat and Gouraud do not: Gouraud with early depth cost
+  // 180 instead of 169 instructions per pixel on the teapot (docs/DECISIONS.md, "Early depth"). The
+  // methods that set up state across spans (kb's y-coherent chunks) get every span whole too.
+  virtual bool skips_hidden_pixels() const { return false; }
 
  protected:
   ~ShadingMethod() = default;

@@ -45,6 +45,7 @@ class PhongMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool skips_hidden_pixels() const override { return true; }
 
  private:
   PointShader point_;

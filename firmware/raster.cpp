@@ -112,8 +112,8 @@ std::uint32_t rasterize(const Triangle& tri, std::int32_t width, std::int32_t he
     const std::int64_t x0 = fx::clamp(l.ix(), 0, width);
     const std::int64_t x1 = fx::clamp(r.ix(), 0, width);
     if (x0 < x1) {
-      target.span(Span{row, static_cast<std::int32_t>(x0), static_cast<std::int32_t>(x1),
-                       l.pos(yc, edges), r.pos(yc, edges)});
+      const auto first = static_cast<std::int32_t>(x0), last = static_cast<std::int32_t>(x1);
+      target.span(Span{row, first, last, l.pos(yc, edges), r.pos(yc, edges), first, last});
       ++spans;
     }
     long_edge.step();

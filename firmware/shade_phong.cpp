@@ -9,8 +9,9 @@ bool PhongMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 }
 
 void PhongMethod::shade_span(const Span& s, Rgb8* out) {
-  const std::int32_t n = s.x1 - s.x0;
-  point_.shade_pixels(s.y, s.x0, n, out);  // Blinn-Phong at every pixel
+  // Every pixel's value is its own (the row's steps are exact): the visible ones alone.
+  const std::int32_t n = s.last - s.first;
+  point_.shade_pixels(s.y, s.first, n, out + (s.first - s.x0));  // Blinn-Phong at every pixel
   counters_->lighting_evaluations += static_cast<std::uint64_t>(n);
 }
 

@@ -108,6 +108,7 @@ CounterSnapshot counter_snapshot(const fw::Counters& c) {
           {"triangles_drawn", c.triangles_drawn},
           {"triangles_skipped", c.triangles_skipped},
           {"spans", c.spans},
+          {"spans_hidden", c.spans_hidden},
           {"pixels_shaded", c.pixels_shaded},
           {"pixels_written", c.pixels_written},
           {"lighting_evaluations", c.lighting_evaluations},

@@ -733,14 +733,18 @@ void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t
   counters_->specular_evaluations += static_cast<std::uint64_t>(n);
 }
 
+// Early depth (skips_hidden_pixels): the exact evaluation and the constant are the same at a
+// pixel wherever a run starts, so they shade [first, last) alone; a quadratic piece's seed
+// depends on where the piece starts and how long it is, so the pieces keep their bounds and
+// only those wholly hidden are left out.
 void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
   if (path_ == Path::kExact) {
-    shade_exact(s.y, s.x0, s.x1 - s.x0, out);
+    shade_exact(s.y, s.first, s.last - s.first, out + (s.first - s.x0));
     return;
   }
   const std::int32_t n = s.x1 - s.x0;
   if (path_ == Path::kConstant && mode_ == AdaptiveMode::kAdaptive) {  // every pixel the same
-    for (std::int32_t x = 0; x < n; ++x) out[x] = constant_;
+    for (std::int32_t x = s.first; x < s.last; ++x) out[x - s.x0] = constant_;
     return;
   }
   const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
@@ -753,7 +757,7 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
   if (leaves_[0].cell.level ==
       0) {  // the whole triangle is one leaf (terminators, or refine's root)
     if (leaves_[0].exact)
-      shade_exact(s.y, s.x0, n, out);
+      shade_exact(s.y, s.first, s.last - s.first, out + (s.first - s.x0));
     else
       shade_cell(leaves_[0], e1, e2, n, out);
     return;
@@ -765,17 +769,22 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
 // map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
 void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2,
                                     Rgb8* out) const {
-  const std::int32_t n = s.x1 - s.x0;
+  const std::int32_t n = s.last - s.x0;  // the pieces after the last visible pixel are left out
+  const std::int32_t first = s.first - s.x0;
   for (std::int32_t x = 0; x < n;) {
     const Cell finest = cell_at(kMaxLevel, e1, e2);
     const Leaf& leaf = leaves_[(finest.up ? leaf_up_ : leaf_down_)[finest.j][finest.i]];
     std::int64_t len = pixels_in(leaf.cell, e1, e2);
-    if (len > n - x) len = n - x;
+    if (len > s.x1 - s.x0 - x) len = s.x1 - s.x0 - x;
     const auto run = static_cast<std::int32_t>(len);
-    if (leaf.exact)
-      shade_exact(s.y, s.x0 + x, run, out + x);
-    else
-      shade_cell(leaf, e1, e2, run, out + x);
+    if (x + run <= first) {
+      // Wholly hidden: nothing to shade.
+    } else if (leaf.exact) {
+      const std::int32_t a = x > first ? x : first, b = x + run < n ? x + run : n;
+      shade_exact(s.y, s.x0 + a, b - a, out + a);
+    } else {
+      shade_cell(leaf, e1, e2, run, out + x);  // whole: its seed depends on its bounds
+    }
     e1 += len * de1_;
     e2 += len * de2_;
     x += run;

@@ -3,7 +3,9 @@
 // gives the same image as culling on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "helpers.hpp"
 
@@ -105,6 +107,95 @@ TEST(Depth, DepthTestedSphereWithoutCullingEqualsCulled) {
     }
   }
   EXPECT_TRUE(images[0] == images[1]);
+}
+
+}  // namespace
+}  // namespace tp::fw::test
+
+namespace tp::fw::test {
+namespace {
+
+// Two quads at depths z_near (x in [-0.8, 0.0]) and z_far (x in [-0.8, 0.8]) of the same height:
+// the near one hides the left half of every span of the far one.
+Mesh near_and_far_quads(double z_near, double z_far) {
+  Mesh m;
+  const double right[2] = {0.0, 0.8};
+  const double z[2] = {z_near, z_far};
+  for (int q = 0; q < 2; ++q)
+    for (glm::dvec3 p : {glm::dvec3(-0.8, -0.8, z[q]), glm::dvec3(right[q], -0.8, z[q]),
+                         glm::dvec3(right[q], 0.8, z[q]), glm::dvec3(-0.8, 0.8, z[q])}) {
+      m.positions.push_back(p);
+      m.normals.push_back({0, 0, 1});
+    }
+  for (std::uint32_t b : {0u, 4u})
+    m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+  return m;
+}
+
+struct DrawCounts {
+  std::uint64_t spans, spans_hidden, shaded, written;
+};
+
+DrawCounts counts_of_draw(Rig& rig, DrawCmd draw) {
+  const Counters before = rig.dev.counters();
+  EXPECT_EQ(rig.dev.draw(draw), Error::kOk);
+  const Counters& after = rig.dev.counters();
+  return {after.spans - before.spans, after.spans_hidden - before.spans_hidden,
+          after.pixels_shaded - before.pixels_shaded, after.pixels_written - before.pixels_written};
+}
+
+// Early depth (device.cpp, PixelWriter::visible_part): a method that skips_hidden_pixels() is
+// asked for the visible part of a span only and not at all for a hidden span; the others shade
+// every pixel. The image is the same either way (docs/DECISIONS.md, "Early depth").
+TEST(EarlyDepth, HiddenSpansAndEndsAreNotShaded) {
+  for (const Method method : kImplementedMethods) {
+    SCOPED_TRACE(static_cast<int>(method));
+    const bool early = method == Method::kPhong || method == Method::kKuijkBlakeAdaptive ||
+                       method == Method::kKuijkBlakeAdaptiveNoSkip ||
+                       method == Method::kKuijkBlakeAdaptiveExact;
+    Rig rig(32, 32);
+    ASSERT_EQ(rig.dev.set_method(method), Error::kOk);
+    LightCmd l;
+    l.index = 0;
+    l.type = LightType::kDirectional;
+    l.color[0] = l.color[1] = l.color[2] = q16(1);
+    l.direction = Vec3u{q30(0), q30(0), q30(1)};
+    ASSERT_EQ(rig.dev.set_light(l), Error::kOk);
+    MaterialCmd mat;
+    mat.color[0] = mat.color[1] = mat.color[2] = q30(0.5);
+    mat.kd = q30(0.6);
+    mat.ks = q30(0.4);
+    mat.n = 20;
+    ASSERT_EQ(rig.dev.set_material(mat), Error::kOk);
+    ASSERT_EQ(rig.dev.clear(Rgb8{0, 0, 0}), Error::kOk);
+    const Mesh m = near_and_far_quads(-0.5, 0.5);
+    ASSERT_EQ(rig.load(m), Error::kOk);
+    const DrawCounts near = counts_of_draw(rig, DrawCmd{0, 6});
+    EXPECT_EQ(near.spans_hidden, 0u);
+    EXPECT_EQ(near.shaded, near.written);  // nothing was there yet
+    const FramebufferView fb = rig.dev.framebuffer();
+    const std::vector<std::uint8_t> image(fb.data, fb.data + fb.stride * 32);
+    // The far quad again over the near one's pixels only (its left half): every span hidden.
+    Mesh hidden = near_and_far_quads(-0.5, 0.5);
+    for (int i = 4; i < 8; ++i) hidden.positions[i].x = std::min(hidden.positions[i].x, 0.0);
+    ASSERT_EQ(rig.load(hidden), Error::kOk);
+    const DrawCounts all_hidden = counts_of_draw(rig, DrawCmd{6, 6});
+    EXPECT_EQ(all_hidden.written, 0u);
+    EXPECT_GT(all_hidden.spans, 0u);
+    EXPECT_EQ(all_hidden.spans_hidden, early ? all_hidden.spans : 0u);
+    EXPECT_EQ(all_hidden.shaded, early ? 0u : near.written);
+    EXPECT_TRUE(std::equal(image.begin(), image.end(), rig.dev.framebuffer().data));
+    // The whole far quad: the left half of each span hidden, the right half written.
+    ASSERT_EQ(rig.load(m), Error::kOk);
+    const DrawCounts half = counts_of_draw(rig, DrawCmd{6, 6});
+    EXPECT_GT(half.written, 0u);
+    // The quad's upper-left triangle has rows wholly left of x = 0.
+    EXPECT_EQ(half.spans_hidden > 0, early);
+    if (early)
+      EXPECT_EQ(half.shaded, half.written);
+    else
+      EXPECT_EQ(half.shaded, half.written + near.written);
+  }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "firmware/kb/kb_adaptive.hpp"
+#include "firmware/methods.hpp"
 #include "firmware/raster.hpp"
 
 namespace tp::fw::kb {
@@ -322,6 +323,63 @@ TEST(KbAdaptiveSkipping, RandomTrianglesWithDarkLightsMatchTheNoSkipVariant) {
               static_cast<unsigned long long>(differing), static_cast<unsigned long long>(pixels));
   EXPECT_GT(with_dark_point, 100);
   EXPECT_EQ(differing, 0u);
+}
+
+// Early depth (ShadingMethod::skips_hidden_pixels): asked for [first, last) of a span, a method
+// gives those pixels exactly the colours it gives them in the whole span. Every span of 2,000
+// random triangles is shaded whole, then narrowed at both ends by random amounts, for each
+// kb-adaptive variant and for Phong (the same exact evaluation).
+class NarrowedSpans final : public SpanTarget {
+ public:
+  NarrowedSpans(ShadingMethod& m, std::mt19937& rng) : m_(m), rng_(rng) {}
+  void span(const Span& s) override {
+    m_.shade_span(s, whole_);
+    Span part = s;
+    std::uniform_int_distribution<std::int32_t> at(s.x0, s.x1 - 1);
+    part.first = at(rng_);
+    part.last = std::uniform_int_distribution<std::int32_t>(part.first + 1, s.x1)(rng_);
+    m_.shade_span(part, narrowed_);
+    for (std::int32_t x = part.first; x < part.last; ++x) {
+      const Rgb8 p = whole_[x - s.x0], q = narrowed_[x - s.x0];
+      differing += (p.r != q.r || p.g != q.g || p.b != q.b) ? 1 : 0;
+      ++pixels;
+    }
+    narrowed_spans += part.last - part.first < s.x1 - s.x0 ? 1 : 0;
+  }
+  std::uint64_t differing = 0, pixels = 0, narrowed_spans = 0;
+
+ private:
+  ShadingMethod& m_;
+  std::mt19937& rng_;
+  Rgb8 whole_[kMaxDimension], narrowed_[kMaxDimension];
+};
+
+TEST(KbAdaptiveEarlyDepth, NarrowedSpansShadeEveryPixelAsTheWholeSpan) {
+  auto adaptive = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kAdaptive);
+  auto noskip = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kNoSkip);
+  auto exact = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kExactOnly);
+  auto phong = std::make_unique<PhongMethod>();
+  ShadingMethod* methods[] = {adaptive.get(), noskip.get(), exact.get(), phong.get()};
+  for (ShadingMethod* m : methods) {
+    ASSERT_TRUE(m->skips_hidden_pixels());
+    Random rnd(31);
+    std::mt19937 rng(5);
+    Counters counters;
+    NarrowedSpans probe(*m, rng);
+    for (int t = 0; t < 2000; ++t) {
+      Scenario sc = rnd.scenario();
+      if (sc.tri.area2 == 0) continue;
+      sc.ctx.counters = &counters;
+      if (!m->setup(sc.tri, sc.ctx)) continue;
+      rasterize(sc.tri, 256, 256, probe);
+    }
+    std::printf("%llu narrowed spans, %llu pixels compared, %llu differ\n",
+                static_cast<unsigned long long>(probe.narrowed_spans),
+                static_cast<unsigned long long>(probe.pixels),
+                static_cast<unsigned long long>(probe.differing));
+    EXPECT_GT(probe.narrowed_spans, 10000u);
+    EXPECT_EQ(probe.differing, 0u);
+  }
 }
 
 }  // namespace
