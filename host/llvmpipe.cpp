@@ -36,14 +36,15 @@ void main() {
 }
 )";
 
-constexpr const char* kFragmentShader = R"(#version 330 core
-const int kMaxLights = 16;
+// LIGHTS, the scene's light count, is defined in front of it (set_scene compiles it per scene),
+// so that the loop's bound is a constant the compiler can unroll, as a shader written for the
+// scene would have it.
+constexpr const char* kFragmentShader = R"(
 in vec3 eye_position;
 in vec3 eye_normal;
-uniform int light_count;
-uniform int light_is_point[kMaxLights];
-uniform vec3 light_vector[kMaxLights];  // eye space: unit direction toward it, or position
-uniform vec3 light_colour[kMaxLights];
+uniform int light_is_point[LIGHTS > 0 ? LIGHTS : 1];
+uniform vec3 light_vector[LIGHTS > 0 ? LIGHTS : 1];  // eye space: unit direction, or position
+uniform vec3 light_colour[LIGHTS > 0 ? LIGHTS : 1];
 uniform vec3 colour;
 uniform float ka, kd, ks, n;
 uniform bool eye_at_infinity;
@@ -52,7 +53,7 @@ void main() {
   vec3 N = normalize(eye_normal);
   vec3 V = eye_at_infinity ? vec3(0.0, 0.0, 1.0) : normalize(-eye_position);
   vec3 c = ka * colour;
-  for (int i = 0; i < light_count; ++i) {
+  for (int i = 0; i < LIGHTS; ++i) {
     vec3 L = light_is_point[i] != 0 ? normalize(light_vector[i] - eye_position) : light_vector[i];
     vec3 LV = L + V;
     float nl = max(0.0, dot(N, L));
@@ -105,9 +106,11 @@ GLuint compile(GLenum kind, const char* source) {
   return s;
 }
 
-GLuint link_program() {
+GLuint link_program(std::size_t lights) {
   const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  const std::string fragment =
+      "#version 330 core\n#define LIGHTS " + std::to_string(lights) + "\n" + kFragmentShader;
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment.c_str());
   const GLuint p = glCreateProgram();
   glAttachShader(p, vs);
   glAttachShader(p, fs);
@@ -186,12 +189,6 @@ LlvmpipePeer::LlvmpipePeer(int width, int height) : gl_(std::make_unique<Gl>()) 
     OSMesaDestroyContext(g.context);
     throw PeerError("llvmpipe: the OSMesa renderer is '" + r + "', not llvmpipe");
   }
-  try {
-    g.program = link_program();
-  } catch (...) {
-    OSMesaDestroyContext(g.context);
-    throw;
-  }
   glViewport(0, 0, width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);  // strictly nearer, as the device (docs/CONVENTIONS.md, "Depth")
@@ -253,11 +250,14 @@ void LlvmpipePeer::set_scene(const Scene& scene) {
   }
   glBindVertexArray(0);
 
+  const std::vector<EyeLight> lights = eye_lights(scene);
+  glDeleteProgram(g.program);  // the previous scene's (0: none)
+  g.program = 0;
+  g.loaded = false;
+  g.program = link_program(lights.size());
   glUseProgram(g.program);
   const glm::mat4 projection(projection_matrix(scene.camera, g.width, g.height));
   glUniformMatrix4fv(g.uniform("projection"), 1, GL_FALSE, glm::value_ptr(projection));
-  const std::vector<EyeLight> lights = eye_lights(scene);
-  glUniform1i(g.uniform("light_count"), static_cast<GLint>(lights.size()));
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const std::string at = "[" + std::to_string(i) + "]";
     glUniform1i(g.uniform(("light_is_point" + at).c_str()),
