@@ -6,7 +6,10 @@
 # the image reads the MPS2's 25 MHz CMSDK timer around everything from the first draw on
 # (draws, model-views, end_frame) and calibrates ticks against a loop of 2,000,000 known
 # instructions (40 instructions per tick; so the figures have a resolution of 40 instructions
-# per frame). Prints a markdown table: instructions per pixel written, and the ratio to Gouraud.
+# per frame). Prints two markdown tables: instructions per pixel written, and the ratio to
+# Gouraud; and the calls of the 64-bit division helpers (__aeabi_ldivmod, __aeabi_uldivmod) per
+# pixel written, counted by wrappers linked into the cost images (target/divcount.S), whose own
+# instructions (7 per call) are taken out of the first table.
 #
 # Usage: bash scripts/target-cost.sh [--build DIR] [--methods m1,m2,...]
 #   DIR: a configured and built tree with the target images (default build/release).
@@ -37,6 +40,7 @@ python3 - "$tmp" "$methods" <<'PY'
 import os, sys
 tmp, methods = sys.argv[1], sys.argv[2].split(",")
 cost = {}  # (scene, method) -> instructions per pixel written
+divs = {}  # (scene, method) -> 64-bit division helper calls per pixel written
 scenes = []
 for m in methods:
     per_tick = None
@@ -46,9 +50,12 @@ for m in methods:
             per_tick = int(f[1]) / int(f[2])
         elif f[0] == "cost":
             scene, ticks, written = f[1], int(f[2]), int(f[3])
+            calls, wrapper = int(f[5]) + int(f[6]), int(f[7])
             if scene not in scenes:
                 scenes.append(scene)
-            cost[scene, m] = ticks * per_tick / written if written else float("nan")
+            instructions = ticks * per_tick - calls * wrapper
+            cost[scene, m] = instructions / written if written else float("nan")
+            divs[scene, m] = calls / written if written else float("nan")
 base = "gouraud" if "gouraud" in methods else None
 print("Guest instructions per pixel written, Cortex-M3 (-O2), 160x120" +
       (" (in brackets: ratio to gouraud)" if base else ""))
@@ -61,4 +68,11 @@ for s in scenes:
         c = cost[s, m]
         cells.append("%.0f" % c + (" (%.2f)" % (c / cost[s, base]) if base and m != base else ""))
     print("| %s | %s |" % (s, " | ".join(cells)))
+print()
+print("64-bit division helper calls (__aeabi_ldivmod + __aeabi_uldivmod) per pixel written, same run")
+print()
+print("| scene | " + " | ".join(methods) + " |")
+print("|---|" + "---:|" * len(methods))
+for s in scenes:
+    print("| %s | %s |" % (s, " | ".join("%.2f" % divs[s, m] for m in methods)))
 PY

@@ -9,9 +9,12 @@
 // Built with TP_COST (the m3-O2-cost-* images of scripts/target-cost.sh), each stream runs in
 // two parts, the setup and then everything from the first draw on (draws, the model-views
 // between them, end_frame), with the MPS2's CMSDK timer 0 read around the second part; it
-// prints "cost NAME TICKS PIXELS_WRITTEN PIXELS_SHADED", and once, first, a calibration:
-// "calibration INSTRUCTIONS TICKS" of a loop of known length. Under QEMU's -icount shift=0
-// the ticks are proportional to guest instructions.
+// prints "cost NAME TICKS PIXELS_WRITTEN PIXELS_SHADED LDIVMOD ULDIVMOD WRAPPER", and once,
+// first, a calibration: "calibration INSTRUCTIONS TICKS" of a loop of known length. Under QEMU's
+// -icount shift=0 the ticks are proportional to guest instructions. LDIVMOD and ULDIVMOD are
+// the calls of the 64-bit division helpers __aeabi_ldivmod and __aeabi_uldivmod in that part,
+// counted by the wrappers of target/divcount.S, and WRAPPER the instructions those wrappers
+// add per call (for the script to take out of the count).
 #include <cstddef>
 #include <cstdint>
 #include <new>
@@ -75,6 +78,10 @@ void timer_start() {
 }
 std::uint32_t timer_now() { return timer0()[1]; }
 
+// target/divcount.S.
+extern "C" std::uint32_t tp_ldivmod_calls, tp_uldivmod_calls;
+constexpr std::uint32_t kDivWrapperInstructions = 7;
+
 void print_calibration() {
   using namespace tp::target;
   constexpr std::uint32_t kIterations = 1000000;  // two instructions each: subs, bne
@@ -104,9 +111,11 @@ tp::fw::Error execute_timed(tp::fw::Device& device, const EmbeddedStream& s) {
   const std::span<const std::uint32_t> words(s.words, s.word_count);
   tp::fw::Error e = device.execute(words.first(split));
   if (e != tp::fw::Error::kOk) return e;
+  const std::uint32_t ldiv0 = tp_ldivmod_calls, uldiv0 = tp_uldivmod_calls;
   const std::uint32_t t0 = timer_now();
   e = device.execute(words.subspan(split));
   const std::uint32_t t1 = timer_now();
+  const std::uint32_t ldiv = tp_ldivmod_calls - ldiv0, uldiv = tp_uldivmod_calls - uldiv0;
   write("cost ");
   write(s.name);
   write(" ");
@@ -115,6 +124,12 @@ tp::fw::Error execute_timed(tp::fw::Device& device, const EmbeddedStream& s) {
   write_dec(device.counters().pixels_written);
   write(" ");
   write_dec(device.counters().pixels_shaded);
+  write(" ");
+  write_dec(ldiv);
+  write(" ");
+  write_dec(uldiv);
+  write(" ");
+  write_dec(kDivWrapperInstructions);
   write("\n");
   return e;
 }
