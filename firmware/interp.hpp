@@ -60,7 +60,10 @@ class ScreenPlane {
   std::int64_t at(const Lambdas& lam) const {
     const std::int64_t l1 = clamp27(lam.l[1] >> shift_), l2 = clamp27(lam.l[2] >> shift_);
     const std::int64_t num = l1 * d1_ + l2 * d2_;
-    return v0_ + fx::div<fx::int_q>(fx::int_q::from_raw(num), fx::int_q::from_raw(area_)).raw();
+    // fx::div<int_q> for a positive denominator: round half away from zero, one division.
+    const std::int64_t q = num / area_, r = num % area_;
+    const std::int64_t ar = r < 0 ? -r : r;
+    return v0_ + (ar >= area_ - ar ? (num < 0 ? q - 1 : q + 1) : q);
   }
   std::int64_t step_x() const { return step_; }
 

@@ -34,6 +34,7 @@ class GouraudMethod final : public ShadingMethod {
  private:
   const Triangle* tri_ = nullptr;
   ScreenPlane plane_[3];
+  bool in_range_ = false;  // every span's colours inside [0, 1]: no check per span
 };
 
 // 3. Phong, exact (shade_phong.cpp): Blinn-Phong at every pixel, at the perspective-correct

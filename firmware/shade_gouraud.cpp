@@ -22,10 +22,19 @@ VertexLevels vertex_colour(const Triangle& tri, int i, const ShadeContext& ctx) 
 
 bool GouraudMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   std::int64_t c[3][3];  // [vertex][channel], clamped to [0, 1] in Q.30
+  bool positive = true;
   for (int i = 0; i < 3; ++i) {
     const VertexLevels v = vertex_colour(tri, i, ctx);
-    for (int ch = 0; ch < 3; ++ch) c[i][ch] = v.c[ch];
+    for (int ch = 0; ch < 3; ++ch) {
+      c[i][ch] = v.c[ch];
+      positive = positive && v.c[ch] > 0;
+    }
   }
+  // A span's colours are the exact interpolation (a convex combination of the vertices', also
+  // with the lambdas cut to 27 bits: the cut weights still sum to at most 1) off by at most half
+  // a unit from at()'s rounding and 4096 · 2^-17 from the steps' (ScreenPlane): so inside
+  // [min − 1, max] of the vertex values, [0, 1] wherever every vertex channel is above 0.
+  in_range_ = positive;
   for (int ch = 0; ch < 3; ++ch) plane_[ch].setup(tri, c[0][ch], c[1][ch], c[2][ch]);
   tri_ = &tri;
   return true;
@@ -45,7 +54,7 @@ void GouraudMethod::shade_span(const Span& s, Rgb8* out) {
     const std::int64_t first = v >> f, last = (v + dv * (n - 1)) >> f;
     return first >= 0 && first <= one && last >= 0 && last <= one;
   };
-  if (in_range(r, dr) && in_range(g, dg) && in_range(b, db)) {
+  if (in_range_ || (in_range(r, dr) && in_range(g, dg) && in_range(b, db))) {
     for (std::int32_t x = 0; x < n; ++x) {
       out[x] =
           Rgb8{to_level_in_range(r >> f), to_level_in_range(g >> f), to_level_in_range(b >> f)};

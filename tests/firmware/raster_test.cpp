@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "firmware/interp.hpp"
 #include "helpers.hpp"
 
 namespace tp::fw::test {
@@ -372,6 +373,46 @@ TEST(Transform, CannotFailIsABoundOnEveryVertexInTheBox) {
   Mat4 big = to_mat4(glm::dmat4(1));
   for (int c = 0; c < 4; ++c) big.m[c][0] = q16(16000);
   EXPECT_FALSE(transform_cannot_fail(big, to_mat4(glm::dmat4(1)), 46341));
+}
+
+// ScreenPlane::at divides once, inline, with fx::div's rounding (half away from zero) for the
+// positive area: the same value as v0 + fx::div<int_q>(l1·d1 + l2·d2, area) over random
+// triangles, vertex values of either sign up to 2^33 (and small ones, for exact ties) and points
+// inside and outside.
+TEST(Interp, ScreenPlaneAtRoundsAsFxDiv) {
+  std::mt19937_64 rng(12);
+  std::uniform_int_distribution<std::int32_t> coord(-4096 * 16, 4096 * 16);
+  std::uniform_int_distribution<std::int64_t> value(-(std::int64_t{1} << 33),
+                                                    std::int64_t{1} << 33);
+  int checked = 0;
+  for (int t = 0; t < 20000; ++t) {
+    Triangle tri;
+    for (ShadeVertex& v : tri.v) {
+      v.sx = coord(rng) >> (t % 12);
+      v.sy = coord(rng) >> (t % 12);
+    }
+    tri.area2 = edge_function(tri.v[0], tri.v[1], tri.v[2].sx, tri.v[2].sy);
+    if (tri.area2 <= 0) continue;
+    // Every other triangle with small values, so that exact ties (a remainder of half the
+    // area) occur and the rounding direction is checked.
+    const std::int64_t scale = t % 2 == 0 ? std::int64_t{1} << 30 : 1;
+    const std::int64_t v0 = value(rng) / scale, v1 = value(rng) / scale, v2 = value(rng) / scale;
+    ScreenPlane plane;
+    plane.setup(tri, v0, v1, v2);
+    const int shift = shift_to_fit(static_cast<std::uint64_t>(tri.area2), 27);
+    for (int k = 0; k < 4; ++k) {
+      const Lambdas lam = lambdas_at(tri, coord(rng) >> (t % 12), coord(rng) >> (t % 12));
+      constexpr std::int64_t lim = std::int64_t{1} << 27;
+      const auto cut = [&](std::int64_t l) { return std::clamp(l >> shift, -lim, lim); };
+      const std::int64_t num = cut(lam.l[1]) * (v1 - v0) + cut(lam.l[2]) * (v2 - v0);
+      const std::int64_t expected =
+          v0 + fx::div<fx::int_q>(fx::int_q::from_raw(num), fx::int_q::from_raw(tri.area2 >> shift))
+                   .raw();
+      ASSERT_EQ(plane.at(lam), expected) << "triangle " << t;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20000);
 }
 
 }  // namespace
