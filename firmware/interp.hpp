@@ -66,6 +66,19 @@ class ScreenPlane {
     return v0_ + (ar >= area_ - ar ? (num < 0 ? q - 1 : q + 1) : q);
   }
   std::int64_t step_x() const { return step_; }
+  // The per-row increment, as step_x() (same format and saturation), computed on demand: only
+  // the methods that step from row to row need it. dv/dpy = (d1 (x0 - x2) + d2 (x1 - x0)) / area2.
+  std::int64_t step_y(const Triangle& t) const {
+    const std::int64_t num =
+        d1_ * (std::int64_t{t.v[0].sx} - t.v[2].sx) + d2_ * (std::int64_t{t.v[1].sx} - t.v[0].sx);
+    return fx::div<Step>(fx::int_q::from_raw(num), fx::Q<58, 4, std::int64_t>::from_raw(t.area2))
+        .raw();
+  }
+  // Whether a step is below the saturation limit with room to spare (2^47 against 2^48).
+  static constexpr bool step_exact(std::int64_t g) {
+    constexpr std::int64_t lim = std::int64_t{1} << 47;
+    return g > -lim && g < lim;
+  }
 
  private:
   static constexpr std::int64_t clamp27(std::int64_t v) {

@@ -13,32 +13,36 @@
 
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
+#include "fixedpoint/normalize_fast.hpp"
 
 namespace tp::fw {
 
 // The lighting vectors at an eye-space point p, the one copy that Blinn-Phong here and the
 // Kuijk-Blake methods' per-vertex directions (kb/) both use, so that they are the same bits.
-// Each costs one normalize_wide, except a directional light's L and the eye at infinity.
+// Each costs one normalize_fast (sample grade: at most 1.81 LSB per component, where the
+// correctly rounded normalize_wide is 0.5 and cost seven times as much: docs/DECISIONS.md,
+// "Gouraud in the pixel loop"), except a directional light's L and the eye at infinity.
 
 // Unit vector toward the light from p.
 inline Vec3u light_direction(const LightState& l, const Vec3q16& p) {
   if (l.type == LightType::kDirectional) return l.direction;
-  return normalize_wide(std::int64_t{l.position.x.raw()} - p.x.raw(),
-                        std::int64_t{l.position.y.raw()} - p.y.raw(),
-                        std::int64_t{l.position.z.raw()} - p.z.raw());
+  return fx::normalize_fast(std::int64_t{l.position.x.raw()} - p.x.raw(),
+                            std::int64_t{l.position.y.raw()} - p.y.raw(),
+                            std::int64_t{l.position.z.raw()} - p.z.raw());
 }
 
 // Unit vector toward the eye from p: toward the origin (finite eye), or +z (eye at infinity).
 inline Vec3u eye_direction(const ShadeContext& ctx, const Vec3q16& p) {
   if (ctx.eye == EyeMode::kInfinite) return Vec3u{q1_30::zero(), q1_30::zero(), q1_30::one()};
-  return normalize_wide(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
-                        -std::int64_t{p.z.raw()});
+  return fx::normalize_fast(-std::int64_t{p.x.raw()}, -std::int64_t{p.y.raw()},
+                            -std::int64_t{p.z.raw()});
 }
 
 // Blinn's halfway vector H = normalize(L + E).
 inline Vec3u halfway(const Vec3u& l, const Vec3u& e) {
-  return normalize_wide(std::int64_t{l.x.raw()} + e.x.raw(), std::int64_t{l.y.raw()} + e.y.raw(),
-                        std::int64_t{l.z.raw()} + e.z.raw());
+  return fx::normalize_fast(std::int64_t{l.x.raw()} + e.x.raw(),
+                            std::int64_t{l.y.raw()} + e.y.raw(),
+                            std::int64_t{l.z.raw()} + e.z.raw());
 }
 
 struct Radiance {

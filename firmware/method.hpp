@@ -101,6 +101,14 @@ struct ShadeContext {
   std::uint64_t revision = 0;
 };
 
+// A span whose colours are linear in x, for the pipeline to compute in its write loop: pixel k of
+// the span (from Span::x0) has channel ch's level c[ch] + k dc[ch] >> kShift, inside [0, 255]
+// at every pixel (the method's promise).
+struct LinearColours {
+  static constexpr int kShift = 46;
+  std::int64_t c[3], dc[3];
+};
+
 class ShadingMethod {
  public:
   // Per-triangle setup. Returns false to skip the triangle (counted as triangles_skipped).
@@ -118,6 +126,14 @@ class ShadingMethod {
   // 180 instead of 169 instructions per pixel on the teapot (docs/DECISIONS.md, "Early depth"). The
   // methods that set up state across spans (kb's y-coherent chunks) get every span whole too.
   virtual bool skips_hidden_pixels() const { return false; }
+  // Whether every span's colours are linear in x (flat's constant, Gouraud's one addition per
+  // channel per pixel): then the pipeline asks linear_span() for them instead of shade_span(),
+  // and computes them in its own pixel loop, with no span buffer between.
+  virtual bool colours_linear() const { return false; }
+  virtual LinearColours linear_span(const Span& s) {
+    static_cast<void>(s);
+    return LinearColours{};
+  }
 
  protected:
   ~ShadingMethod() = default;

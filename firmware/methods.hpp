@@ -16,6 +16,8 @@ class FlatMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool colours_linear() const override { return true; }
+  LinearColours linear_span(const Span& s) override;
 
  private:
   Rgb8 colour_{0, 0, 0};
@@ -23,18 +25,26 @@ class FlatMethod final : public ShadingMethod {
 
 // 2. Gouraud (shade_gouraud.cpp): lighting at the three vertices, clamped to [0, 1], then
 //    interpolated linearly in SCREEN space (the 1980s assumption, not perspective-correct):
-//    one addition per channel per pixel.
+//    one addition per channel per row and per pixel.
 class GouraudMethod final : public ShadingMethod {
  public:
   // Lights each vertex once per draw, through the triangle's VertexLevels cache.
   static constexpr bool kLightsVertices = true;
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
+  bool colours_linear() const override { return true; }
+  LinearColours linear_span(const Span& s) override;
 
  private:
   const Triangle* tri_ = nullptr;
   ScreenPlane plane_[3];
-  bool in_range_ = false;  // every span's colours inside [0, 1]: no check per span
+  // The colours at the previous span's start, stepped to the next span's: exact (at()) for the
+  // triangle's first span, then per row and per pixel in x by the planes' steps, as along a span.
+  std::int64_t start_[3] = {0, 0, 0};  // ScreenPlane::kStepFrac more fraction bits
+  std::int64_t step_x_[3] = {0, 0, 0}, step_y_[3] = {0, 0, 0};
+  std::int32_t x_ = 0, y_ = 0;  // the previous span's start
+  bool stepping_ = false;       // start_ holds the previous span's start
+  bool steps_exact_ = false;    // no step saturated: row steps allowed
 };
 
 // 3. Phong, exact (shade_phong.cpp): Blinn-Phong at every pixel, at the perspective-correct
