@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <utility>
 
 #include <tiny_obj_loader.h>
@@ -186,8 +187,10 @@ Mesh parse_obj(std::string_view text, const std::string& file) {
 }
 
 Mesh load_obj(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file))
-    throw MeshError("mesh file not found: " + file.string());
+  std::error_code ec;  // a name the OS refuses is a MeshError, not a filesystem_error
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw MeshError("mesh file not found: " + file.string() +
+                    (ec ? " (" + ec.message() + ")" : std::string()));
   std::string text;
   switch (read_text_file(file, kMaxObjFileBytes, text)) {
     case ReadResult::ok: break;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <string>
 #include <utility>
 
 #include "host/meshes.hpp"
@@ -147,6 +148,8 @@ TEST(Obj, ComputesMissingNormalsAndRejectsBadFiles) {
   const std::string data = TP_HOST_TEST_DATA;
   EXPECT_THROW(load_obj(data + "/bad.obj"), MeshError);
   EXPECT_THROW(load_obj(data + "/nothing_here.obj"), MeshError);
+  // A name the OS refuses is a MeshError too, not an escaping filesystem_error.
+  EXPECT_THROW(load_obj(data + "/" + std::string(4000, 'A') + ".obj"), MeshError);
 }
 
 TEST(Obj, NonFiniteNumbersNameFileLineAndField) {

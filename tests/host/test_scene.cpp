@@ -108,6 +108,25 @@ TEST(SceneParse, MissingFileIsAnError) {
   EXPECT_NE(e.problem().find("cannot open"), std::string::npos);
 }
 
+TEST(SceneParse, AnObjNameTheSystemRefusesIsTheScenesError) {
+  // Found by fuzz_scene: a 4,000-character name made std::filesystem throw "File name too long"
+  // past the scene reader; it must be a SceneError at the "obj" key's line.
+  const std::string text =
+      "{\n\"camera\": {\"type\": \"orthographic\", \"extents\": [-1, 1, -1, 1]},\n"
+      "\"lights\": [],\n\"meshes\": [\n{\"obj\": \"" +
+      std::string(4000, 'A') + ".obj\"}]}";
+  try {
+    parse_scene(text, "long.json", kData);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), "long.json");
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_EQ(e.path(), "/meshes/0/obj");
+    EXPECT_NE(e.problem().find("mesh file not found"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("too long"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneParse, InlineTextErrorsNameTheGivenFileName) {
   try {
     parse_scene("{\n \"camera\": {\"type\": \"fisheye\"}, \"lights\": [], \"meshes\": []}",
