@@ -125,7 +125,7 @@ MethodSlot method_slot(Method m) {
 // each triangle's depth plane, and the counters are summed in members and added to the
 // device's once, by flush_counters(). Per span there is then the method's call, the depth at
 // the span's start, and one call of the chosen loop.
-class PixelWriter final : public SpanTarget {
+class PixelWriter final {
  public:
   explicit PixelWriter(Device& d) : dev_(d) {
     const DeviceState& st = d.state_;
@@ -157,7 +157,8 @@ class PixelWriter final : public SpanTarget {
     zplane_.setup(t, t.v[0].z, t.v[1].z, t.v[2].z);
     dz_ = zplane_.step_x();
   }
-  void span(const Span& s) override {
+  // rasterize()'s target, called (and inlined) without a virtual call per span.
+  void span(const Span& s) {
     ++spans_;
     const std::size_t row = static_cast<std::size_t>(s.y) * width_;
     const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
@@ -403,7 +404,7 @@ std::size_t Device::method_bytes(Method m) { return method_slot(m).bytes; }
 std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap, Method m) {
   const std::size_t pixels = std::size_t{vp.width} * vp.height;
   std::size_t n = align8(std::size_t{cap.max_vertices} * sizeof(Vertex));
-  n += align8(std::size_t{cap.max_vertices} * sizeof(ClipVertex));
+  n += align8(std::size_t{cap.max_vertices} * sizeof(CachedVertex));
   n += align8(std::size_t{cap.max_indices} * sizeof(std::uint32_t));
   n += align8(pixels * bytes_per_pixel(vp.format));
   n += align8(pixels * sizeof(std::uint32_t));
@@ -432,7 +433,7 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
   s.off_vertices = o;
   o += align8(std::size_t{cap.max_vertices} * sizeof(Vertex));
   s.off_cache = o;
-  o += align8(std::size_t{cap.max_vertices} * sizeof(ClipVertex));
+  o += align8(std::size_t{cap.max_vertices} * sizeof(CachedVertex));
   s.off_indices = o;
   o += align8(std::size_t{cap.max_indices} * sizeof(std::uint32_t));
   s.off_colour = o;
@@ -690,15 +691,18 @@ Error Device::draw(const DrawCmd& cmd) {
       if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
         return fail(Error::kOutOfRange);
     }
-  // The vertex cache: every position now, each normal when a triangle that is drawn first
-  // needs it (vertex_normal), each vertex's colour when a method that lights vertices first
-  // needs it (Triangle::levels). A back face or a clipped-away triangle costs no normal.
-  ClipVertex* cache = region<ClipVertex>(state_.off_cache);
+  // The vertex cache: every position, clip mask and (inside the view) projection now, each
+  // normal when a triangle that is drawn first needs it (vertex_normal), each vertex's colour
+  // when a method that lights vertices first needs it (Triangle::levels). A back face or a
+  // clipped-away triangle costs no normal.
+  CachedVertex* cache = region<CachedVertex>(state_.off_cache);
   VertexLevels* levels =
       state_.off_method > state_.off_levels ? region<VertexLevels>(state_.off_levels) : nullptr;
+  const auto width = static_cast<std::int32_t>(state_.viewport.width);
+  const auto height = static_cast<std::int32_t>(state_.viewport.height);
   for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
-    (void)transform_position(state_.modelview, state_.projection, verts[i], cache[i]);
-    cache[i].normal.x = q1_30::from_raw(kNormalPending);
+    cache_vertex(state_.modelview, state_.projection, verts[i], width, height, cache[i]);
+    cache[i].v.normal.x = q1_30::from_raw(kNormalPending);
     if (levels != nullptr) levels[i].c[0] = -1;
   }
   PixelWriter writer(*this);
@@ -708,7 +712,7 @@ Error Device::draw(const DrawCmd& cmd) {
 }
 
 const Vec3u& Device::vertex_normal(std::uint32_t id) {
-  ClipVertex& v = region<ClipVertex>(state_.off_cache)[id];
+  ClipVertex& v = region<CachedVertex>(state_.off_cache)[id].v;
   if (v.normal.x.raw() == kNormalPending)
     v.normal = transform_normal(state_.modelview, region<Vertex>(state_.off_vertices)[id]);
   return v.normal;
@@ -716,61 +720,79 @@ const Vec3u& Device::vertex_normal(std::uint32_t id) {
 
 void Device::draw_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer) {
   ++counters_.triangles_in;
-  const ClipVertex* cache = region<ClipVertex>(state_.off_cache);
-  ClipVertex tri[3] = {cache[id[0]], cache[id[1]], cache[id[2]]};
-  const ClipClass cls = classify(tri);
-  if (cls == ClipClass::kOutside) {
+  const CachedVertex* cache = region<CachedVertex>(state_.off_cache);
+  const CachedVertex& a = cache[id[0]];
+  const CachedVertex& b = cache[id[1]];
+  const CachedVertex& c = cache[id[2]];
+  if ((a.outside & b.outside & c.outside) != 0) {  // all three outside one plane
     ++counters_.triangles_rejected;
     return;
   }
-  ClipResult cr{3, false};
-  ClipVertex poly[kMaxClipVertices];
-  if (cls == ClipClass::kCrossing) {
-    // Clipping interpolates the normals: the three are needed before it.
-    for (int i = 0; i < 3; ++i) tri[i].normal = vertex_normal(id[i]);
-    cr = ClipResult{clip_crossing(tri, poly), true};
-    if (cr.count == 0) {
-      ++counters_.triangles_rejected;
-      return;
-    }
-    ++counters_.triangles_clipped;
+  if ((a.outside | b.outside | c.outside) != 0) {
+    draw_crossing_triangle(id, levels, writer);
+    return;
   }
-  const ClipVertex* in = cr.clipped ? poly : tri;
-  const auto w = static_cast<std::int32_t>(state_.viewport.width);
-  const auto h = static_cast<std::int32_t>(state_.viewport.height);
-  ShadeVertex sv[kMaxClipVertices];
-  for (int i = 0; i < cr.count; ++i) sv[i] = project(in[i], w, h);
-  // Facing of an unclipped triangle: its snapped screen area, front = clockwise on screen
-  // (y down) = negative edge function here. For a clipped triangle the exact homogeneous
-  // determinant decides instead: the snapped pieces of a zero-area or sliver triangle could
-  // otherwise come out with either orientation. det[x y w] > 0 is counter-clockwise in NDC (y up),
-  // i.e. clockwise on screen: front.
-  bool front = false;
-  if (cr.clipped) {
-    const int o = homogeneous_orientation(tri);
-    if (o == 0) {
-      ++counters_.triangles_degenerate;
-      return;
-    }
-    front = o > 0;
-  } else {
-    const std::int64_t area2 = edge_function(sv[0], sv[1], sv[2].sx, sv[2].sy);
-    if (area2 == 0) {
-      ++counters_.triangles_degenerate;
-      return;
-    }
-    front = area2 < 0;
+  // Inside every plane: the cached projections. Facing by the snapped screen area, front =
+  // clockwise on screen (y down) = negative edge function here.
+  const std::int64_t area2 = (std::int64_t{b.sx} - a.sx) * (std::int64_t{c.sy} - a.sy) -
+                             (std::int64_t{b.sy} - a.sy) * (std::int64_t{c.sx} - a.sx);
+  if (area2 == 0) {
+    ++counters_.triangles_degenerate;
+    return;
   }
+  const bool front = area2 < 0;
   if (!front && state_.cull_back_faces) {
     ++counters_.triangles_culled;
     return;
   }
-  if (!cr.clipped)
-    for (int i = 0; i < 3; ++i) {
-      sv[i].normal = vertex_normal(id[i]);
-      sv[i].id = static_cast<std::int32_t>(id[i]);  // < 2^24 (layout's capacity bound)
-    }
-  for (int i = 1; i + 1 < cr.count; ++i)
+  draw_fan_triangle(shade_vertex(id[0]), shade_vertex(id[1]), shade_vertex(id[2]), front, levels,
+                    writer);
+}
+
+ShadeVertex Device::shade_vertex(std::uint32_t id) {
+  const CachedVertex& c = region<CachedVertex>(state_.off_cache)[id];
+  ShadeVertex s;
+  s.eye = c.v.eye;
+  s.normal = vertex_normal(id);
+  s.sx = c.sx;
+  s.sy = c.sy;
+  s.z = c.z;
+  s.w = q15_16::from_raw(c.v.clip[3]);
+  s.id = static_cast<std::int32_t>(id);  // < 2^24 (layout's capacity bound)
+  return s;
+}
+
+void Device::draw_crossing_triangle(const std::uint32_t id[3], VertexLevels* levels,
+                                    PixelWriter& writer) {
+  const CachedVertex* cache = region<CachedVertex>(state_.off_cache);
+  ClipVertex tri[3] = {cache[id[0]].v, cache[id[1]].v, cache[id[2]].v};
+  // Clipping interpolates the normals: the three are needed before it.
+  for (int i = 0; i < 3; ++i) tri[i].normal = vertex_normal(id[i]);
+  ClipVertex poly[kMaxClipVertices];
+  const int count = clip_crossing(tri, poly);
+  if (count == 0) {
+    ++counters_.triangles_rejected;
+    return;
+  }
+  ++counters_.triangles_clipped;
+  // Facing by the exact sign of the homogeneous determinant: the snapped pieces of a zero-area or
+  // sliver triangle could otherwise come out with either orientation. det[x y w] > 0 is
+  // counter-clockwise in NDC (y up), i.e. clockwise on screen: front.
+  const int o = homogeneous_orientation(tri);
+  if (o == 0) {
+    ++counters_.triangles_degenerate;
+    return;
+  }
+  const bool front = o > 0;
+  if (!front && state_.cull_back_faces) {
+    ++counters_.triangles_culled;
+    return;
+  }
+  const auto w = static_cast<std::int32_t>(state_.viewport.width);
+  const auto h = static_cast<std::int32_t>(state_.viewport.height);
+  ShadeVertex sv[kMaxClipVertices];
+  for (int i = 0; i < count; ++i) sv[i] = project(poly[i], w, h);
+  for (int i = 1; i + 1 < count; ++i)
     draw_fan_triangle(sv[0], sv[i], sv[i + 1], front, levels, writer);
 }
 

@@ -7,7 +7,7 @@
 // Memory: the device runs entirely in the caller's block (no heap). Layout, each region
 // 8-byte aligned, in this order (so that a viewport change keeps the uploaded buffers):
 //   vertices   max_vertices x Vertex          (uploaded data)
-//   cache      max_vertices x ClipVertex      (per-draw transformed vertices)
+//   cache      max_vertices x CachedVertex    (per-draw transformed and projected vertices)
 //   indices    max_indices  x uint32
 //   colour     width x height x 3 (RGB888) or 2 (RGB565, little-endian 5:6:5)
 //   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
@@ -162,6 +162,9 @@ class Device {
     return reinterpret_cast<T*>(mem_.data() + off);
   }
   void draw_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer);
+  // A triangle that crosses a clip plane: clipped, projected and drawn as a fan.
+  void draw_crossing_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer);
+  ShadeVertex shade_vertex(std::uint32_t id);  // an inside vertex from the cache, with its normal
   void draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const ShadeVertex& c,
                          bool front, VertexLevels* levels, PixelWriter& writer);
   const Vec3u& vertex_normal(std::uint32_t id);  // transformed on first use in a draw

@@ -150,15 +150,18 @@ bool transform_cannot_fail(const Mat4& mv, const Mat4& proj, std::uint32_t coord
   return true;
 }
 
+std::uint32_t outside_planes(const ClipVertex& v) {
+  std::uint32_t mask = 0;
+  for (int p = 0; p < kClipPlanes; ++p)
+    if (plane_distance(v, p) < 0) mask |= 1u << p;
+  return mask;
+}
+
 ClipClass classify(const ClipVertex in[3]) {
-  bool all_inside = true;
-  for (int p = 0; p < kClipPlanes; ++p) {
-    int outside = 0;
-    for (int i = 0; i < 3; ++i) outside += plane_distance(in[i], p) < 0 ? 1 : 0;
-    if (outside == 3) return ClipClass::kOutside;
-    all_inside = all_inside && outside == 0;
-  }
-  return all_inside ? ClipClass::kInside : ClipClass::kCrossing;
+  const std::uint32_t a = outside_planes(in[0]), b = outside_planes(in[1]),
+                      c = outside_planes(in[2]);
+  if ((a & b & c) != 0) return ClipClass::kOutside;
+  return (a | b | c) == 0 ? ClipClass::kInside : ClipClass::kCrossing;
 }
 
 ClipResult clip_triangle(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]) {
@@ -199,6 +202,17 @@ ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height
   s.eye = v.eye;
   s.normal = v.normal;
   return s;
+}
+
+void cache_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, std::int32_t width,
+                  std::int32_t height, CachedVertex& out) {
+  (void)transform_position(mv, proj, in, out.v);
+  out.outside = outside_planes(out.v);
+  if (out.outside != 0) return;
+  const ShadeVertex s = project(out.v, width, height);
+  out.sx = s.sx;
+  out.sy = s.sy;
+  out.z = s.z;
 }
 
 }  // namespace tp::fw

@@ -46,6 +46,9 @@ struct ClipResult {
   int count = 0;         // vertices of the clipped convex polygon (0: rejected)
   bool clipped = false;  // some plane cut the triangle
 };
+// Bit p set when v lies outside clip plane p. A triangle is rejected when its three vertices'
+// masks share a bit (all outside one plane), and inside when their union is empty.
+std::uint32_t outside_planes(const ClipVertex& v);
 // Where a triangle lies against the clip planes: all three vertices inside every plane, all
 // three outside one plane (rejected), or crossing (clipped by clip_crossing).
 enum class ClipClass { kInside, kOutside, kCrossing };
@@ -65,5 +68,19 @@ int homogeneous_orientation(const ClipVertex v[3]);
 // Divide by w and map to the viewport, snapping to 1/16 pixel (round to nearest, ties away
 // from zero): sx = (x/w + 1) / 2 * 16 W, sy = (1 - y/w) / 2 * 16 H.
 ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height);
+
+// One vertex of a draw's vertex cache: transformed, its clip-plane mask, and, when it is inside
+// every plane, projected (ShadeVertex's sx, sy and z, as project() gives them): a vertex shared
+// by six triangles is projected once, and a triangle inside the view is classified from three
+// masks. Vertices outside a plane are projected by the triangles that clip them.
+struct CachedVertex {
+  ClipVertex v;
+  std::uint32_t outside = 0;  // outside_planes(v)
+  std::int32_t sx = 0, sy = 0;
+  std::int64_t z = 0;
+};
+// Transforms and, if it is inside every plane, projects one vertex (its normal left untouched).
+void cache_vertex(const Mat4& mv, const Mat4& proj, const Vertex& in, std::int32_t width,
+                  std::int32_t height, CachedVertex& out);
 
 }  // namespace tp::fw

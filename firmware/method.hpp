@@ -4,7 +4,7 @@
 // The pipeline is setup -> traversal -> shading, kept apart:
 //   1. geometry (geometry.cpp) transforms, clips and projects; each triangle that reaches the
 //      rasterizer is handed to the method's setup() with its three ShadeVertex records;
-//   2. the rasterizer (raster.cpp) walks the edges in y and cuts spans in x (top-left rule);
+//   2. the rasterizer (raster.hpp) walks the edges in y and cuts spans in x (top-left rule);
 //   3. for each span the method's shade_span() writes one colour per pixel of [x0, x1).
 // Depth test and framebuffer writes are the pipeline's, after shade_span. Early depth: with the
 // depth test on, the pipeline first finds the span's visible pixels; a method that

@@ -56,7 +56,7 @@ enum class Method : std::uint32_t {
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };
 enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 
-// Device limits. The bound arguments are in raster.cpp (coordinates) and device.cpp (inputs).
+// Device limits. The bound arguments are in raster.hpp (coordinates) and device.cpp (inputs).
 inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
 inline constexpr std::uint32_t kMaxLights = 16;
 inline constexpr std::uint32_t kMaxBudgetLevels = 16;  // largest error budget (set_budget)

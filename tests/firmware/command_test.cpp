@@ -229,10 +229,11 @@ TEST(Commands, MemoryRequiredIsExactPerMethod) {
     EXPECT_EQ(std::memcmp(before.data(), &b.state(), sizeof(DeviceState)), 0);
   }
   // The buffers alone: the colour (2 bytes per pixel), the depth (4), one span of the viewport's
-  // width, the vertices and their transformed copies, the indices, each rounded up to 8 bytes.
+  // width, the vertices and their transformed and projected copies, the indices, each rounded up
+  // to 8 bytes.
   const std::size_t pixels = 160 * 120;
   const auto align8 = [](std::size_t v) { return (v + 7) & ~std::size_t{7}; };
-  const std::size_t buffers = align8(64 * sizeof(Vertex)) + align8(64 * sizeof(ClipVertex)) +
+  const std::size_t buffers = align8(64 * sizeof(Vertex)) + align8(64 * sizeof(CachedVertex)) +
                               align8(192 * 4) + align8(pixels * 2) + align8(pixels * 4) +
                               align8(160 * sizeof(Rgb8));
   // Gouraud lights each vertex once per draw: its lit-vertex cache, one VertexLevels per vertex;
