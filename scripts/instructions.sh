@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # Instructions per pixel written of the device's draw, for every method and paper scene (a
 # benchmark, not a test): callgrind counts the instructions executed inside
-# tp::fw::Device::draw* while the release CLI renders the scene once; the count is divided by
-# the frame's pixels_written counter. Instruction counts are repeatable on a shared machine.
+# tp::fw::Device::draw(const DrawCmd&) while the release CLI renders the scene once; the count is
+# divided by the frame's pixels_written counter. Instruction counts are repeatable on a shared
+# machine. The toggle names the one top-level function exactly: callgrind toggles collection on
+# every entry to a matching function, so the pattern 'tp::fw::Device::draw*' switched it off
+# again inside draw_triangle (called from draw) and left out its work — the vertex normals,
+# the clip test, the projection — until 2026-12-03 (docs/DECISIONS.md, "The vertex cache
+# projects").
 # It runs tinyphong-draw (bench/draw.cpp): the same DeviceRenderer::render as `tinyphong render`,
 # without the image library, whose dependency libhwy executes rdtscp at load time — an
 # instruction valgrind refuses on processors that do not advertise it.
@@ -43,7 +48,7 @@ for s in ${scenes//,/ }; do
   row="| $s |"
   for m in ${methods//,/ }; do
     out="$tmp/cg.out"
-    log=$(valgrind --tool=callgrind --toggle-collect='tp::fw::Device::draw*' \
+    log=$(valgrind --tool=callgrind --toggle-collect='tp::fw::Device::draw(tp::fw::DrawCmd const&)' \
       --callgrind-out-file="$out" "$bin" "scenes/$s.json" --method "$m" "${budget[@]}" 2>/dev/null)
     px=$(echo "$log" | awk '$1 == "pixels_written" {print $3}')
     ir=$(awk '/^summary:/ {print $2}' "$out")

@@ -93,7 +93,8 @@ EOF
 
 ## Instructions per pixel written
 
-The steadier cost figure: instructions executed inside \`tp::fw::Device::draw*\`, counted by
+The steadier cost figure: instructions executed inside \`tp::fw::Device::draw\` (all of it: the
+vertex cache, clipping, set-up, spans and pixels; the clear is outside), counted by
 callgrind for one frame of each scene, divided by the frame's pixels written (repeatable to the
 instruction on any x86-64 machine with the same compiler). \`bash scripts/instructions.sh
 --methods flat,gouraud,phong,kb,kb-adaptive\`, $(date +%Y-%m-%d).
