@@ -5,10 +5,16 @@
 // advertise it.
 //
 //   tinyphong-draw scenes/teapot.json --method kb-adaptive [--size 1024x1024] [--budget B]
+//
+// --frames N renders the frame N times back to back and prints the median frame time: the loop
+// to run under `perf record` when profiling the frame alone (warm caches, no peer in between,
+// unlike tinyphong-results' interleaved rounds; docs/DECISIONS.md, "The vertex cache projects").
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,12 +27,15 @@ int main(int argc, char** argv) {
   CLI::App app{"render a scene once with the device and print its counters"};
   std::string scene_file, method, size;
   int budget = 0;
+  int frames = 1;
   app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
   app.add_option("--method", method, "shading method (tinyphong methods)");
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
   app.add_option("--budget", budget,
                  "kb-adaptive's error budget in output levels (default: the scene's)")
       ->check(CLI::Range(1, static_cast<int>(tp::fw::kMaxBudgetLevels)));
+  app.add_option("--frames", frames, "render this many frames and print the median frame time")
+      ->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
   try {
     Scene scene = load_scene(scene_file);
@@ -45,9 +54,18 @@ int main(int argc, char** argv) {
     }
     DeviceRenderer device(scene.width, scene.height);
     device.set_scene(scene);
-    const DeviceFrame frame = device.render();
+    std::vector<double> ms;
+    DeviceFrame frame = device.render();
+    ms.push_back(frame.render_ms);
+    for (int i = 1; i < frames; ++i) ms.push_back(device.render().render_ms);
     std::cout << "drew " << scene.name << " (" << frame.width << "x" << frame.height << ", "
-              << scene.method << ")\ncounters:\n";
+              << scene.method << ")\n";
+    if (frames > 1) {
+      std::nth_element(ms.begin(), ms.begin() + frames / 2, ms.end());
+      std::cout << "median frame time over " << frames << " frames: " << ms[ms.size() / 2]
+                << " ms\n";
+    }
+    std::cout << "counters:\n";
     for (const auto& [name, value] : frame.counters)
       std::cout << "  " << name << " = " << value << "\n";
   } catch (const std::exception& e) {
