@@ -22,10 +22,25 @@ struct Counters {
   std::uint64_t spans_hidden = 0;    // of those, left out by early depth: no pixel visible
   std::uint64_t pixels_shaded = 0;   // pixels a method was asked for (early depth: visible part)
   std::uint64_t pixels_written = 0;  // pixels that passed the depth test
-  // Per-method work.
-  std::uint64_t lighting_evaluations = 0;  // full Blinn-Phong evaluations (vertex, centroid, pixel)
-  std::uint64_t specular_evaluations = 0;  // pixels/points where a specular power was evaluated
-  std::uint64_t normalizations = 0;        // rsqrt renormalisations
+  // Per-method work. Every method counts these by the same definitions (tests/conformance):
+  //   lighting_evaluations  points at which the exact Blinn-Phong sum over all lights was
+  //                         evaluated — a vertex, a centroid, a sample, a pixel — one per point
+  //                         whatever the number of lights;
+  //   specular_evaluations  (point or pixel, light) pairs for which a specular factor — the exact
+  //                         power or a method's stand-in for it (Kuijk-Blake's f, a table, a
+  //                         polynomial) — was evaluated: per light, so it grows with the lights.
+  //                         A light left out by a per-triangle or per-span test is not counted
+  //                         (lights_skipped_*); pixels coloured from a fit of the summed colour
+  //                         (Gouraud's interpolation, kb-adaptive's planes and quadratics) count
+  //                         none;
+  //   normalizations        unit vectors formed by a reciprocal root in a per-point evaluation
+  //                         (blinn_phong: a point light's L, a finite eye's V, each H) or per
+  //                         triangle (flat's mean normal); the per-pixel evaluation that takes
+  //                         roots of dot products without forming unit vectors (PointShader)
+  //                         counts none.
+  std::uint64_t lighting_evaluations = 0;
+  std::uint64_t specular_evaluations = 0;
+  std::uint64_t normalizations = 0;
   std::uint64_t lights_skipped_triangle = 0;
   std::uint64_t lights_skipped_span = 0;
   std::uint64_t segments = 0;  // span segments (summed sections, Kuijk-Blake)

@@ -3,15 +3,12 @@
 #include "firmware/device.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
-#include <new>
-#include <type_traits>
 
-#include "firmware/kb/kb_adaptive.hpp"
-#include "firmware/kb/kb_methods.hpp"
-#include "firmware/methods.hpp"
 #include "firmware/raster.hpp"
+#include "firmware/registry.hpp"
 #include "fixedpoint/cordic.hpp"
 
 namespace tp::fw {
@@ -60,59 +57,30 @@ std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
   return static_cast<std::uint32_t>((z_q30 + (std::int64_t{1} << 30)) * 2);
 }
 
-// The methods the device implements: the size of each one's state and how to construct it in
-// the block's method region. The reserved ids of types.hpp have no row (set_method refuses them).
-struct MethodSlot {
-  std::size_t bytes = 0;
-  ShadingMethod* (*construct)(void* where) = nullptr;
-  bool lights_vertices = false;  // gets the lit-vertex cache region (VertexLevels per vertex)
+// The registry's slots by id (firmware/registry.hpp), derived at compile time: the table's names
+// and descriptions stay out of the firmware's image. An id without a row (a reserved one of
+// types.hpp) has none: set_method refuses it.
+struct SlotRow {
+  Method id;
+  MethodSlot slot;
 };
-template <class T, auto... kArgs>
-ShadingMethod* construct_at(void* where) {
-  static_assert(alignof(T) <= 8, "the block's regions are 8-byte aligned");
-  static_assert(std::is_trivially_destructible_v<T>,
-                "a method's region is reused without running a destructor");
-  return ::new (where) T(kArgs...);
+constexpr auto kSlots = [] {
+  std::array<SlotRow, std::size(kMethodTable)> rows{};
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rows[i] = {kMethodTable[i].id, kMethodTable[i].slot};
+  return rows;
+}();
+MethodSlot method_slot(Method m) {
+  for (const SlotRow& row : kSlots)
+    if (row.id == m) return row.slot;
+  return MethodSlot{};
 }
-template <class T, auto... kArgs>
-constexpr MethodSlot slot_of() {
-  constexpr bool lights = [] {
-    if constexpr (requires { T::kLightsVertices; })
-      return T::kLightsVertices;
-    else
-      return false;
-  }();
-  return MethodSlot{sizeof(T), construct_at<T, kArgs...>, lights};
-}
-MethodSlot method_slot(Method m);
 // The lit-vertex cache's bytes for method m (0 for a method that does not light vertices).
 std::size_t levels_bytes(Method m, const BufferCapacityCmd& cap) {
   return method_slot(m).lights_vertices ? std::size_t{cap.max_vertices} * sizeof(VertexLevels) : 0;
 }
 // A normal the draw has not transformed yet: no unit normal has this raw x (|x| <= 2^30).
 constexpr std::int32_t kNormalPending = std::numeric_limits<std::int32_t>::min();
-MethodSlot method_slot(Method m) {
-  switch (m) {
-    case Method::kFlat: return slot_of<FlatMethod>();
-    case Method::kGouraud: return slot_of<GouraudMethod>();
-    case Method::kPhong: return slot_of<PhongMethod>();
-    case Method::kKuijkBlake: return slot_of<kb::KbOneVectorMethod, true>();
-    case Method::kKuijkBlakeNoSkip: return slot_of<kb::KbOneVectorMethod, false>();
-    case Method::kKuijkBlakeDecomposition: return slot_of<kb::KbDecompositionMethod>();
-    case Method::kKuijkBlakeExact: return slot_of<kb::KbExactMethod>();
-    case Method::kKuijkBlakeAdaptive:
-      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kAdaptive>();
-    case Method::kKuijkBlakeAdaptiveNoSkip:
-      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kNoSkip>();
-    case Method::kKuijkBlakeAdaptiveExact:
-      return slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kExactOnly>();
-    case Method::kDuff:
-    case Method::kBishopWeimer:
-    case Method::kBrown:
-    case Method::kVlasic: break;  // reserved
-  }
-  return MethodSlot{};
-}
 
 }  // namespace
 
@@ -417,10 +385,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
 
 std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
   std::size_t largest = 0;
-  for (std::uint32_t id = 0; id < 32; ++id) {  // every id of Method (types.hpp) is below 32
-    const auto m = static_cast<Method>(id);
-    if (method_bytes(m) != 0) largest = std::max(largest, memory_required(vp, cap, m));
-  }
+  for (const SlotRow& row : kSlots) largest = std::max(largest, memory_required(vp, cap, row.id));
   return largest;
 }
 

@@ -13,6 +13,8 @@ void PhongMethod::shade_span(const Span& s, Rgb8* out) {
   const std::int32_t n = s.last - s.first;
   point_.shade_pixels(s.y, s.first, n, out + (s.first - s.x0));  // Blinn-Phong at every pixel
   counters_->lighting_evaluations += static_cast<std::uint64_t>(n);
+  counters_->specular_evaluations +=
+      static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(point_.lights());
 }
 
 }  // namespace tp::fw

@@ -62,41 +62,29 @@ Image8 ReferenceFrame::image() const {
   return img;
 }
 
-const std::vector<MethodName>& method_names() {
-  static const std::vector<MethodName> names = {
-      {"flat", fw::Method::kFlat, "one Blinn-Phong evaluation per triangle, at the centroid"},
-      {"gouraud", fw::Method::kGouraud, "lighting at the vertices, colour interpolated"},
-      {"phong", fw::Method::kPhong, "exact per-pixel Blinn-Phong in fixed point"},
-      {"kb", fw::Method::kKuijkBlake, "Kuijk-Blake one-vector angular interpolation (eq. 4)"},
-      {"kb-noskip", fw::Method::kKuijkBlakeNoSkip, "kb with every skip disabled (same image)"},
-      {"kb-decomposition", fw::Method::kKuijkBlakeDecomposition,
-       "Kuijk-Blake decomposition (eq. 2): product of two forward-differenced f"},
-      {"kb-exact", fw::Method::kKuijkBlakeExact,
-       "Kuijk-Blake exact angular interpolation (eq. 1), per-pixel CORDIC"},
-      {"kb-adaptive", fw::Method::kKuijkBlakeAdaptive,
-       "Kuijk-Blake per triangle under an error budget (1 level unless set): quadratic, "
-       "subdivision or per pixel"},
-      {"kb-adaptive-noskip", fw::Method::kKuijkBlakeAdaptiveNoSkip,
-       "kb-adaptive with every skip disabled (same image)"},
-      {"kb-adaptive-exact", fw::Method::kKuijkBlakeAdaptiveExact,
-       "kb-adaptive's exact evaluation at every pixel (the reference of its error budget)"},
-  };
-  return names;
-}
+std::span<const fw::MethodInfo> method_names() { return fw::kMethodTable; }
 
 fw::Method method_from_name(std::string_view name) {
-  for (const auto& m : method_names())
-    if (m.name == name) return m.method;
+  if (const fw::MethodInfo* m = fw::find_method(name)) return m->id;
   std::string valid;
   for (const auto& m : method_names()) valid += (valid.empty() ? "" : ", ") + std::string(m.name);
   throw std::invalid_argument("unknown shading method '" + std::string(name) +
                               "' (valid: " + valid + ")");
 }
 
+std::string_view fidelity_name(fw::Fidelity f) {
+  return f == fw::Fidelity::kExact ? "exact" : "approximated";
+}
+
+std::string capabilities_text(const fw::MethodCapabilities& caps) {
+  return "point lights " + std::string(fidelity_name(caps.point_lights)) + ", finite eye " +
+         std::string(fidelity_name(caps.finite_eye)) + ", several lights " +
+         std::string(fidelity_name(caps.many_lights));
+}
+
 std::string_view method_name(fw::Method method) {
-  for (const auto& m : method_names())
-    if (m.method == method) return m.name;
-  return "unknown";
+  const fw::MethodInfo* m = fw::find_method(method);
+  return m != nullptr ? m->name : "unknown";
 }
 
 CounterSnapshot counter_snapshot(const fw::Counters& c) {

@@ -8,12 +8,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "firmware/device.hpp"
+#include "firmware/registry.hpp"
 #include "host/image.hpp"
 #include "host/reference.hpp"
 #include "host/scene.hpp"
@@ -40,15 +42,16 @@ struct ReferenceFrame {
   Image8 image() const;
 };
 
-// Shading method names as the CLI, scene files and the server spell them.
-struct MethodName {
-  std::string_view name;
-  fw::Method method;
-  std::string_view description;
-};
-const std::vector<MethodName>& method_names();
+// The shading methods as the CLI, scene files and the server spell them: the firmware's registry
+// (firmware/registry.hpp), in its order.
+std::span<const fw::MethodInfo> method_names();
 // Throws std::invalid_argument naming the valid choices.
 fw::Method method_from_name(std::string_view name);
+// "exact" or "approximated" (firmware/registry.hpp, Fidelity).
+std::string_view fidelity_name(fw::Fidelity f);
+// What a method does with point lights, a finite eye and several lights, in words:
+// "point lights exact, finite eye approximated, several lights exact".
+std::string capabilities_text(const fw::MethodCapabilities& caps);
 std::string_view method_name(fw::Method method);
 
 // Names and values of every counter of the device, in a fixed order.

@@ -497,7 +497,8 @@ int main(int argc, char** argv) {
     if (*replay) return run_replay(rep_in, rep_out, rep_hash);
     if (*memory) return run_memory(mem_vertices, mem_indices);
     if (*methods) {
-      for (const auto& m : method_names()) std::cout << m.name << "\t" << m.description << "\n";
+      for (const auto& m : method_names())
+        std::cout << m.name << "\t" << m.description << "\t" << capabilities_text(m.caps) << "\n";
       return 0;
     }
   } catch (const SceneError& e) {

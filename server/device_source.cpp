@@ -78,9 +78,11 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
   if (Result r = install(std::move(sc), scene); !r.ok()) throw std::runtime_error(r.message());
 }
 
-std::vector<std::string> DeviceSource::methods() const {
-  std::vector<std::string> out;
-  for (const auto& m : host::method_names()) out.emplace_back(m.name);
+std::vector<MethodEntry> DeviceSource::methods() const {
+  std::vector<MethodEntry> out;
+  for (const auto& m : host::method_names())
+    out.push_back(
+        {std::string(m.name), std::string(m.description), host::capabilities_text(m.caps)});
   return out;
 }
 

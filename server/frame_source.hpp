@@ -33,6 +33,11 @@ struct ViewSettings {
   int width = 320, height = 240;
 };
 
+// A shading method as the page lists it: the registry's row (firmware/registry.hpp) in words.
+struct MethodEntry {
+  std::string name, description, capabilities;
+};
+
 struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgb;      // RGB888, row-major, top row first
@@ -53,7 +58,7 @@ class FrameSource {
   virtual Result apply(const ViewSettings& s) = 0;
   // Loads a shipped scene by name; on failure nothing changed.
   virtual Result load_scene(const std::string& name) = 0;
-  virtual std::vector<std::string> methods() const = 0;
+  virtual std::vector<MethodEntry> methods() const = 0;
   virtual std::vector<std::string> scenes() const = 0;
   virtual RenderedFrame render(double rotation_radians) = 0;
   // A closure computing the double reference of the current scene at that rotation, safe to

@@ -12,12 +12,16 @@ PatternSource::PatternSource() {
   s_.lights.push_back({false, {1, 1.5, 1}, {1, 1, 1}});
 }
 
-std::vector<std::string> PatternSource::methods() const { return {"gradient", "rings", "flat"}; }
+std::vector<MethodEntry> PatternSource::methods() const {
+  return {{"gradient", "a test pattern: colour gradients", "no lighting"},
+          {"rings", "a test pattern: rings", "no lighting"},
+          {"flat", "a test pattern: one colour", "no lighting"}};
+}
 std::vector<std::string> PatternSource::scenes() const { return {"pattern"}; }
 
 Result PatternSource::apply(const ViewSettings& s) {
   const auto m = methods();
-  if (std::find(m.begin(), m.end(), s.method) == m.end())
+  if (std::none_of(m.begin(), m.end(), [&](const MethodEntry& e) { return e.name == s.method; }))
     return Result::failure("unknown method '" + s.method + "'");
   s_ = s;
   return Result::success();

@@ -11,7 +11,7 @@ class PatternSource : public FrameSource {
   const ViewSettings& settings() const override { return s_; }
   Result apply(const ViewSettings& s) override;
   Result load_scene(const std::string& name) override;
-  std::vector<std::string> methods() const override;
+  std::vector<MethodEntry> methods() const override;
   std::vector<std::string> scenes() const override;
   RenderedFrame render(double rotation_radians) override;
   std::function<Image()> reference_task(double rotation_radians) override;

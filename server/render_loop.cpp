@@ -92,6 +92,12 @@ void RenderLoop::publish_state() {
   for (const auto& l : s.lights)
     lights.push_back(
         {{"kind", l.point ? "point" : "directional"}, {"vector", l.vector}, {"color", l.color}});
+  json methods = json::array(), method_info = json::array();
+  for (const MethodEntry& m : src_->methods()) {
+    methods.push_back(m.name);
+    method_info.push_back(
+        {{"name", m.name}, {"description", m.description}, {"capabilities", m.capabilities}});
+  }
   json j = {{"type", "state"},
             {"scene", s.scene},
             {"method", s.method},
@@ -110,7 +116,8 @@ void RenderLoop::publish_state() {
             {"animate", flags_.animate},
             {"paused", flags_.paused},
             {"reference", flags_.reference},
-            {"methods", src_->methods()},
+            {"methods", methods},
+            {"method_info", method_info},
             {"scenes", src_->scenes()}};
   auto msg = std::make_shared<const std::string>(j.dump());
   {

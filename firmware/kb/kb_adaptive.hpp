@@ -141,6 +141,12 @@ class KbAdaptiveMethod final : public ShadingMethod {
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
+  // n exact evaluations (pixels or samples), counted as counters.hpp defines them.
+  void count_exact(std::int64_t n) const {
+    counters_->lighting_evaluations += static_cast<std::uint64_t>(n);
+    counters_->specular_evaluations +=
+        static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(point_.lights());
+  }
   void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n,
                   Rgb8* out) const;
   void shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const;

@@ -50,7 +50,7 @@ class KbOneVectorMethod final : public ShadingMethod {
   // The two halves of shade_span, public so that the benchmark can time the span setup alone:
   // prepare_span builds the summed sections of the span, evaluate_span steps them.
   void prepare_span(const Span& s);
-  void evaluate_span(const Span& s, Rgb8* out);
+  void evaluate_span(Rgb8* out);
 
  private:
   void add_term(const Unit v[3], const cosn::CosnCoeffs& c, const Support& support,

@@ -83,6 +83,7 @@ const std::int32_t* KbAdaptiveMethod::lattice_at(int la, int lb) {
     else {
       point_.shade(point_.point(lc, la, lb), lattice_.value[i], terminator_mask_);
       ++counters_->lattice_samples;
+      count_exact(1);
     }
     lattice_.stamp[i] = lattice_.generation;
   }
@@ -151,6 +152,7 @@ void KbAdaptiveMethod::edge_sample(int la, int lb, int lc, std::int32_t out[]) {
   }
   point_.shade(point_.edge_point(a, b, ka, kb), out, terminator_mask_);
   ++counters_->lattice_samples;
+  count_exact(1);
   m.a = key_a;
   m.b = key_b;
   m.share = share;
@@ -730,7 +732,7 @@ Rgb8 KbAdaptiveMethod::exact_at(std::int32_t x, std::int32_t y) const {
 void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n,
                                    Rgb8* out) const {
   point_.shade_pixels(y, xa, n, out);
-  counters_->specular_evaluations += static_cast<std::uint64_t>(n);
+  count_exact(n);
 }
 
 // Early depth (skips_hidden_pixels): the exact evaluation and the constant are the same at a

@@ -71,6 +71,7 @@ inline void KbDecompositionMethod::prepare_span(const Span& s) {
       }
       Term& t = term_[terms_++];
       t.weight = spec ? light.ws : light.wd;
+      if (spec) t_.counters->specular_evaluations += static_cast<std::uint64_t>(length);
       const AngleLine ul = angle_line(u1, wrap_pi(u1) + wrap_pi(u2 - u1), xl, xr, first);
       const AngleLine vl = angle_line(v1, v2, xl, xr, first);
       // make_one_channel steps at most 1 rad per pixel (kb_sections.hpp): a faster step on a
@@ -103,7 +104,6 @@ inline void KbDecompositionMethod::evaluate_span(const Span& s, Rgb8* out) {
     }
     out[x] = Rgb8{level_of(acc[0]), level_of(acc[1]), level_of(acc[2])};
   }
-  t_.counters->specular_evaluations += terms_ > 0 ? static_cast<std::uint64_t>(length) : 0u;
 }
 
 void KbDecompositionMethod::shade_span(const Span& s, Rgb8* out) {

@@ -90,8 +90,10 @@ inline void KbExactMethod::evaluate_span(const Span& s, Rgb8* out) {
     }
     out[x] = Rgb8{level_of(acc[0]), level_of(acc[1]), level_of(acc[2])};
   }
+  int specular_terms = 0;
+  for (int j = 0; j < terms_; ++j) specular_terms += term_[j].specular ? 1 : 0;
   t_.counters->specular_evaluations +=
-      static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(terms_ / 2);
+      static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(specular_terms);
 }
 
 void KbExactMethod::shade_span(const Span& s, Rgb8* out) {

@@ -321,6 +321,8 @@ void KbOneVectorMethod::add_span_term(const OneVectorTerm& t, std::int64_t phi_f
   make_term(sections_.next_term(), *t.coeffs, angle_t::from_raw_sat(phi0), dphi, scale,
             s.x1 - s.x0);
   sections_.commit();
+  if (t.coeffs == &coeffs_.specular)  // one light's specular f on every pixel of the span
+    counters_->specular_evaluations += static_cast<std::uint64_t>(s.x1 - s.x0);
 }
 
 // The exact setup of a term on the span (also the fallback of the coherent setup).
@@ -376,10 +378,9 @@ void KbOneVectorMethod::prepare_span(const Span& s) {
   ++chunk_row_;
 }
 
-void KbOneVectorMethod::evaluate_span(const Span& s, Rgb8* out) {
+void KbOneVectorMethod::evaluate_span(Rgb8* out) {
   const SpanSections::Stats st = sections_.evaluate(out, skipping_);
   counters_->segments += st.segments;
-  counters_->specular_evaluations += static_cast<std::uint64_t>(s.x1 - s.x0) - st.ambient_pixels;
 }
 
 void KbOneVectorMethod::shade_span(const Span& s, Rgb8* out) {
@@ -388,7 +389,7 @@ void KbOneVectorMethod::shade_span(const Span& s, Rgb8* out) {
     return;
   }
   prepare_span(s);
-  evaluate_span(s, out);
+  evaluate_span(out);
 }
 
 }  // namespace tp::fw::kb

@@ -205,6 +205,18 @@ function fillSelect(id, values, current) {
   sel.value = current;
 }
 
+// The method's row of the device's registry, in words: under the selector, and on each option.
+function describeMethods(s) {
+  const info = s.method_info || [];
+  const sel = $('method');
+  for (const o of sel.options) {
+    const m = info.find((i) => i.name === o.value);
+    if (m) o.title = `${m.description} (${m.capabilities})`;
+  }
+  const cur = info.find((i) => i.name === s.method);
+  $('method-about').textContent = cur ? `${cur.description}; ${cur.capabilities}` : '';
+}
+
 function applyState(s) {
   tp.state = s;
   if (!s.reference && lastRef) { // comparison switched off: drop the stale reference
@@ -214,6 +226,7 @@ function applyState(s) {
   }
   fillSelect('scene', s.scenes, s.scene);
   fillSelect('method', s.methods, s.method);
+  describeMethods(s);
   for (const k of ['width', 'height', 'budget', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
   setValue('a', Number(s.a).toFixed(4));
   setValue('b', Number(s.b).toFixed(4));

@@ -2,7 +2,8 @@
 // starts tinyphong-server on a free loopback port, loads the page, and checks that
 //  1. frames arrive and are painted, and the painted canvas pixels hash (FNV-1a 64, RGB) to the
 //     checksum the server reports for that frame — byte for byte what the server sent;
-//  2. changing the method from the page changes the counters and the image;
+//  2. changing the method from the page changes the counters and the image; every method of the
+//     device's registry can be selected, renders, and is described under the selector;
 //  3. the reference comparison arrives (reference frame paired with the device frame, error stats),
 //     and kb-adaptive's budget set from the page makes it sample less;
 //  4. the page reconnects by itself when the server restarts.
@@ -103,11 +104,44 @@ try {
   check(JSON.stringify(b.stats.counters) !== JSON.stringify(a.stats.counters), 'the counters changed');
   check(JSON.stringify(b.painted.counters) !== JSON.stringify(a.painted.counters), "the painted frame's counters changed");
 
+  // 2b. Every registered method, in turn: selected from the page, rendered (the painted frame is
+  // the server's), and described under the selector by its registry row. The server does not
+  // re-send a frame identical to the last one (a verification variant renders its method's
+  // image), so the page returns to `other` between two methods: each switch shows a new frame.
+  const info = b.state.method_info ?? [];
+  check(info.length === methods.length && info.every((m, i) => m.name === methods[i] && m.description && m.capabilities),
+        `the state describes every method (${info.length} of ${methods.length})`);
+  const select = async (name, after) => {
+    await page.selectOption('#method', name);
+    await page.waitForFunction((n) => window.tp.state.method === n, name, { timeout: 10000 });
+    return settled(page, after.painted.id + 1);
+  };
+  const described = async (m) => {
+    const about = await page.textContent('#method-about');
+    return [about, about.includes(m.description) && about.includes(m.capabilities)];
+  };
+  let last = b;
+  for (const m of info) {
+    if (m.name === other) {
+      const [about, ok] = await described(m);
+      check(ok, `method ${m.name}: described as "${about}"`);
+      continue;
+    }
+    const f = await select(m.name, last);
+    const [about, ok] = await described(m);
+    check(f.painted.checksum === f.stats.frame.checksum && f.painted.checksum !== b.painted.checksum &&
+          (f.painted.counters.pixels_written ?? 0) > 1000 && ok,
+          `method ${m.name}: frame ${f.painted.id} painted as sent, described as "${about}"`);
+    last = await select(other, f);
+    check(last.painted.checksum === b.painted.checksum, `back on ${other}: the same image as before`);
+  }
+  const back = last;
+
   // 3. Reference comparison: a reference frame paired with the device frame, and error stats.
   await page.check('#reference');
   await page.waitForFunction(() => window.tp.refsPainted >= 1 && window.tp.stats.error, null, { timeout: 60000 });
   const e = await page.evaluate(() => window.tp.stats.error);
-  check(e.frame_id === b.painted.id && e.correctness > 0.5 && e.correctness <= 1,
+  check(e.frame_id === back.painted.id && e.correctness > 0.5 && e.correctness <= 1,
         `reference comparison for frame ${e.frame_id}: colour correctness ${e.correctness.toFixed(5)}`);
   const heatPainted = await page.evaluate(() => document.getElementById('heat').width === 320);
   check(heatPainted, 'the difference image is painted');
@@ -115,7 +149,7 @@ try {
   // 3b. kb-adaptive's error budget from the page: a larger budget takes fewer exact samples.
   await page.selectOption('#method', 'kb-adaptive');
   await page.waitForFunction(() => window.tp.state.method === 'kb-adaptive', null, { timeout: 10000 });
-  const k1 = await settled(page, b.painted.id + 1);
+  const k1 = await settled(page, back.painted.id + 1);
   check(k1.state.budget === 1, `the budget starts at 1 level (${k1.state.budget})`);
   await page.fill('#budget', '8');
   await page.dispatchEvent('#budget', 'change');

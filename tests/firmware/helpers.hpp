@@ -2,6 +2,7 @@
 // conversion, meshes, and matrix conversion from GLM.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -11,20 +12,16 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "firmware/device.hpp"
+#include "firmware/registry.hpp"
 
 namespace tp::fw::test {
 
-// Every method the device implements (the reserved ids of types.hpp excluded).
-inline constexpr Method kImplementedMethods[] = {Method::kFlat,
-                                                 Method::kGouraud,
-                                                 Method::kPhong,
-                                                 Method::kKuijkBlake,
-                                                 Method::kKuijkBlakeNoSkip,
-                                                 Method::kKuijkBlakeDecomposition,
-                                                 Method::kKuijkBlakeExact,
-                                                 Method::kKuijkBlakeAdaptive,
-                                                 Method::kKuijkBlakeAdaptiveNoSkip,
-                                                 Method::kKuijkBlakeAdaptiveExact};
+// Every method the device implements: the registry's ids (firmware/registry.hpp).
+inline constexpr auto kImplementedMethods = [] {
+  std::array<Method, std::size(kMethodTable)> ids{};
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = kMethodTable[i].id;
+  return ids;
+}();
 
 inline q15_16 q16(double v) {
   return q15_16::from_raw(static_cast<std::int32_t>(std::llround(v * 65536.0)));

@@ -42,10 +42,11 @@ TEST_P(KbSkipping, ImageIdenticalWithSkippingOff) {
   const std::uint64_t span = counter(on, "lights_skipped_span");
   const std::uint64_t evaluated_on = counter(on, "specular_evaluations");
   const std::uint64_t evaluated_off = counter(off, "specular_evaluations");
-  std::printf("%s: terms skipped per triangle %llu, per span %llu; pixels evaluated %llu of %llu\n",
-              GetParam(), static_cast<unsigned long long>(tri),
-              static_cast<unsigned long long>(span), static_cast<unsigned long long>(evaluated_on),
-              static_cast<unsigned long long>(evaluated_off));
+  std::printf(
+      "%s: terms skipped per triangle %llu, per span %llu; specular evaluations %llu of %llu\n",
+      GetParam(), static_cast<unsigned long long>(tri), static_cast<unsigned long long>(span),
+      static_cast<unsigned long long>(evaluated_on),
+      static_cast<unsigned long long>(evaluated_off));
   // The skip-free variant counts nothing as skipped; the skipping one must skip something on
   // every paper scene (a specular lobe with n = 20 never covers a whole sphere).
   EXPECT_EQ(counter(off, "lights_skipped_triangle") + counter(off, "lights_skipped_span"), 0u);

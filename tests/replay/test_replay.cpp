@@ -72,7 +72,7 @@ TEST(Replay, PaperScenesAreTwentyFour) { EXPECT_EQ(paper_scenes().size(), 24u); 
 // Every method on every paper scene at the target tests' size (tests/target).
 TEST(Replay, EveryMethodEverySceneAt160x120) {
   for (const std::string& name : paper_scenes())
-    for (const MethodName& m : method_names())
+    for (const fw::MethodInfo& m : method_names())
       expect_replay_equals_render(name, std::string(m.name), 160, 120);
 }
 

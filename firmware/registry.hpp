@@ -1,0 +1,177 @@
+// The method registry: one row per shading method — its command id, the name the CLI, scene
+// files, server and page spell, a description, what it does with point lights, a finite eye and
+// several lights, and how the device lays out and constructs its state. Every other list of
+// methods is derived from this table (docs/CONVENTIONS.md, "Methods"): a new method is its own
+// file plus one row (and its id in types.hpp, the command stream's number for it).
+//
+// The firmware reads the table only in constant expressions (device.cpp derives its slot array
+// from it at compile time), so the names and descriptions are not linked into the firmware's
+// image; the host reads them at run time.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <string_view>
+#include <type_traits>
+
+#include "firmware/kb/kb_adaptive.hpp"
+#include "firmware/kb/kb_methods.hpp"
+#include "firmware/method.hpp"
+#include "firmware/methods.hpp"
+#include "firmware/types.hpp"
+
+namespace tp::fw {
+
+// How a method treats a feature of the scene:
+//   kExact        the method evaluates the true vectors (L toward a point light, V toward a
+//                 finite eye) at every point where it evaluates the lighting, or, for several
+//                 lights, sums every light's contribution as it would one light's;
+//   kApproximated it computes them at some points (vertices, the centroid) and interpolates or
+//                 holds them between, or merges the lights; the description says how.
+enum class Fidelity : std::uint8_t { kExact, kApproximated };
+
+struct MethodCapabilities {
+  Fidelity point_lights = Fidelity::kExact;
+  Fidelity finite_eye = Fidelity::kExact;
+  Fidelity many_lights = Fidelity::kExact;
+};
+
+// Where a method's state lives: its bytes in the block's method region, and how to construct it
+// there (device.cpp). lights_vertices: the method gets the draw's lit-vertex cache
+// (VertexLevels per vertex, Triangle::levels).
+struct MethodSlot {
+  std::size_t bytes = 0;
+  ShadingMethod* (*construct)(void* where) = nullptr;
+  bool lights_vertices = false;
+};
+
+namespace detail {
+template <class T, auto... kArgs>
+ShadingMethod* construct_at(void* where) {
+  static_assert(alignof(T) <= 8, "the block's regions are 8-byte aligned");
+  static_assert(std::is_trivially_destructible_v<T>,
+                "a method's region is reused without running a destructor");
+  return ::new (where) T(kArgs...);
+}
+}  // namespace detail
+
+// The slot of method class T, constructed with kArgs (a mode, a flag).
+template <class T, auto... kArgs>
+constexpr MethodSlot slot_of() {
+  constexpr bool lights = [] {
+    if constexpr (requires { T::kLightsVertices; })
+      return T::kLightsVertices;
+    else
+      return false;
+  }();
+  return MethodSlot{sizeof(T), detail::construct_at<T, kArgs...>, lights};
+}
+
+struct MethodInfo {
+  Method id;
+  std::string_view name;  // fixed: scripts, scene files and the benchmark refer to it
+  std::string_view description;
+  MethodCapabilities caps;
+  MethodSlot slot;
+  // A verification variant (the same method with its skips disabled) names the method whose
+  // image it must reproduce byte for byte; Method{} (0) for the others.
+  Method same_image_as{};
+};
+
+inline constexpr Fidelity kExact = Fidelity::kExact;
+inline constexpr Fidelity kApprox = Fidelity::kApproximated;
+
+// The rows, in the order the CLI lists them and the benchmark's columns run.
+inline constexpr MethodInfo kMethodTable[] = {
+    {Method::kFlat,
+     "flat",
+     "one Blinn-Phong evaluation per triangle, at the centroid",
+     {kExact, kExact, kExact},
+     slot_of<FlatMethod>()},
+    {Method::kGouraud,
+     "gouraud",
+     "lighting at the vertices, colour interpolated",
+     {kExact, kExact, kExact},
+     slot_of<GouraudMethod>()},
+    {Method::kPhong,
+     "phong",
+     "exact per-pixel Blinn-Phong in fixed point",
+     {kExact, kExact, kExact},
+     slot_of<PhongMethod>()},
+    {Method::kKuijkBlake,
+     "kb",
+     "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",
+     {kApprox, kApprox, kExact},
+     slot_of<kb::KbOneVectorMethod, true>()},
+    {Method::kKuijkBlakeNoSkip,
+     "kb-noskip",
+     "kb with every skip disabled (same image)",
+     {kApprox, kApprox, kExact},
+     slot_of<kb::KbOneVectorMethod, false>(),
+     Method::kKuijkBlake},
+    {Method::kKuijkBlakeDecomposition,
+     "kb-decomposition",
+     "Kuijk-Blake decomposition (eq. 2): product of two forward-differenced f; L and H at the "
+     "vertices, slerped",
+     {kApprox, kApprox, kExact},
+     slot_of<kb::KbDecompositionMethod>()},
+    {Method::kKuijkBlakeExact,
+     "kb-exact",
+     "Kuijk-Blake exact angular interpolation (eq. 1), per-pixel CORDIC; L and H at the "
+     "vertices, slerped",
+     {kApprox, kApprox, kExact},
+     slot_of<kb::KbExactMethod>()},
+    {Method::kKuijkBlakeAdaptive,
+     "kb-adaptive",
+     "Kuijk-Blake per triangle under an error budget (1 level unless set): quadratic, "
+     "subdivision or per pixel, within the budget of the exact evaluation",
+     {kExact, kExact, kExact},
+     slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kAdaptive>()},
+    {Method::kKuijkBlakeAdaptiveNoSkip,
+     "kb-adaptive-noskip",
+     "kb-adaptive with every skip disabled (same image)",
+     {kExact, kExact, kExact},
+     slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kNoSkip>(),
+     Method::kKuijkBlakeAdaptive},
+    {Method::kKuijkBlakeAdaptiveExact,
+     "kb-adaptive-exact",
+     "kb-adaptive's exact evaluation at every pixel (the reference of its error budget)",
+     {kExact, kExact, kExact},
+     slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kExactOnly>()},
+};
+
+// Every id of Method is below this (the device's slot array is indexed by id).
+inline constexpr std::uint32_t kMethodIdLimit = 32;
+
+// The row of id, or null: in a constant expression in the firmware, at run time in the host.
+constexpr const MethodInfo* find_method(Method id) {
+  for (const MethodInfo& row : kMethodTable)
+    if (row.id == id) return &row;
+  return nullptr;
+}
+constexpr const MethodInfo* find_method(std::string_view name) {
+  for (const MethodInfo& row : kMethodTable)
+    if (row.name == name) return &row;
+  return nullptr;
+}
+
+namespace detail {
+// The table's own invariants, checked when it is compiled: ids in range and distinct, names
+// distinct and non-empty, every row with a constructible state, a verified method in the table.
+constexpr bool registry_is_consistent() {
+  for (std::size_t i = 0; i < std::size(kMethodTable); ++i) {
+    const MethodInfo& a = kMethodTable[i];
+    const auto id = static_cast<std::uint32_t>(a.id);
+    if (id == 0 || id >= kMethodIdLimit || a.name.empty() || a.description.empty()) return false;
+    if (a.slot.bytes == 0 || a.slot.construct == nullptr) return false;
+    if (a.same_image_as != Method{} && find_method(a.same_image_as) == nullptr) return false;
+    for (std::size_t j = i + 1; j < std::size(kMethodTable); ++j)
+      if (kMethodTable[j].id == a.id || kMethodTable[j].name == a.name) return false;
+  }
+  return true;
+}
+static_assert(registry_is_consistent(), "method registry: an id or name twice, or an empty row");
+}  // namespace detail
+
+}  // namespace tp::fw

@@ -1,0 +1,292 @@
+// The conformance test: what every registered shading method (firmware/registry.hpp) must do,
+// whatever it computes in between. Instantiated over the registry, so a new row is tested
+// without touching this file — except for its counting rule (kSites below), whose absence fails.
+//
+//   - coverage: the same pixels as Gouraud on every paper scene (a method may not skip a
+//     triangle or a pixel the pipeline drew), the same geometry counters;
+//   - an ambient-only material (kd = ks = 0) gives exactly the ambient colour on every covered
+//     pixel of every paper scene;
+//   - determinism: the same frame renders to the same bytes after another frame and in a fresh
+//     device (no state from one frame leaks into the next), with the same counters in a fresh
+//     device;
+//   - skipping: a light of zero intensity changes no pixel; a verification variant (the same
+//     method with its skips disabled) renders its method's image byte for byte;
+//   - the counters mean what firmware/counters.hpp defines, in every method.
+//
+// Frames are 160x120 (the target suite's size): the test is about rules, not accuracy, and
+// it renders every paper scene several times per method.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "firmware/registry.hpp"
+#include "host/device_renderer.hpp"
+#include "host/scene.hpp"
+
+namespace tp::fw {
+// gtest prints a failing parameter by its name.
+void PrintTo(const MethodInfo& m, std::ostream* os) { *os << m.name; }
+}  // namespace tp::fw
+
+namespace tp::host {
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// Every scenes/*.json (the paper scenes and their multi-light variants).
+std::vector<std::string> paper_scenes() {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(TP_SCENES_DIR))
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Scene paper_scene(const std::string& name) {
+  Scene s = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
+  s.width = kWidth;
+  s.height = kHeight;
+  return s;
+}
+
+DeviceFrame draw(Scene scene, std::string_view method, double rotation = 0.0) {
+  scene.method = std::string(method);
+  DeviceRenderer renderer(kWidth, kHeight);
+  renderer.set_scene(scene);
+  return renderer.render(rotation);
+}
+
+std::uint64_t counter(const DeviceFrame& f, std::string_view name) {
+  for (const auto& [n, v] : f.counters)
+    if (n == name) return v;
+  ADD_FAILURE() << "no counter " << name;
+  return 0;
+}
+
+// The counters of one frame: all but `frames`, which counts frames since the device was made.
+CounterSnapshot frame_counters(const DeviceFrame& f) {
+  CounterSnapshot out;
+  for (const auto& c : f.counters)
+    if (c.first != "frames") out.push_back(c);
+  return out;
+}
+
+// Gouraud's frame of each paper scene, rendered once for all methods.
+const DeviceFrame& gouraud_frame(const std::string& scene) {
+  static std::map<std::string, DeviceFrame> frames;
+  auto it = frames.find(scene);
+  if (it == frames.end()) it = frames.emplace(scene, draw(paper_scene(scene), "gouraud")).first;
+  return it->second;
+}
+
+std::string test_name(const fw::MethodInfo& m) {
+  std::string n(m.name);
+  std::replace(n.begin(), n.end(), '-', '_');
+  return n;
+}
+
+class Conformance : public ::testing::TestWithParam<fw::MethodInfo> {};
+
+TEST_P(Conformance, CoversWhatGouraudCoversOnEveryPaperScene) {
+  const fw::MethodInfo& m = GetParam();
+  const auto scenes = paper_scenes();
+  ASSERT_EQ(scenes.size(), 24u);
+  for (const std::string& name : scenes) {
+    SCOPED_TRACE(name);
+    const DeviceFrame& g = gouraud_frame(name);
+    const DeviceFrame f = draw(paper_scene(name), m.name);
+    EXPECT_TRUE(f.covered == g.covered) << "coverage differs from Gouraud's";
+    EXPECT_GT(std::count(f.covered.begin(), f.covered.end(), 1), 0);
+    for (const char* c :
+         {"triangles_in", "triangles_culled", "triangles_clipped", "triangles_rejected",
+          "triangles_degenerate", "triangles_drawn", "pixels_written"})
+      EXPECT_EQ(counter(f, c), counter(g, c)) << c;
+    EXPECT_EQ(counter(f, "triangles_skipped"), 0u);
+    EXPECT_EQ(counter(f, "saturations"), 0u);
+  }
+}
+
+// ka = 0.25, O = (0.8, 0.6, 0.3): 255 ka O = 51, 38.25, 19.125, far from a rounding tie.
+TEST_P(Conformance, AnAmbientOnlyMaterialGivesTheAmbientColour) {
+  const fw::MethodInfo& m = GetParam();
+  const std::uint8_t expected[3] = {51, 38, 19};
+  for (const std::string& name : paper_scenes()) {
+    SCOPED_TRACE(name);
+    Scene s = paper_scene(name);
+    s.material.ka = 0.25;
+    s.material.kd = 0;
+    s.material.ks = 0;
+    s.material.colour = {0.8, 0.6, 0.3};
+    s.background = {0, 0, 0};
+    const DeviceFrame f = draw(s, m.name);
+    std::size_t covered = 0, wrong = 0;
+    for (std::size_t p = 0; p < f.covered.size(); ++p) {
+      const std::uint8_t* px = &f.rgb[3 * p];
+      const bool ok = f.covered[p] != 0
+                          ? px[0] == expected[0] && px[1] == expected[1] && px[2] == expected[2]
+                          : px[0] == 0 && px[1] == 0 && px[2] == 0;
+      covered += f.covered[p] != 0 ? 1 : 0;
+      wrong += ok ? 0 : 1;
+    }
+    EXPECT_GT(covered, 0u);
+    EXPECT_EQ(wrong, 0u) << "pixels other than the ambient colour (or the background)";
+  }
+}
+
+// The same frame after another one, and in a fresh device: the same bytes and counters.
+TEST_P(Conformance, RendersAFrameTheSameWayEveryTime) {
+  const fw::MethodInfo& m = GetParam();
+  for (const char* name : {"teapot-l2", "sphere-40-l4", "triangle-l8"}) {
+    SCOPED_TRACE(name);
+    Scene s = paper_scene(name);
+    s.method = std::string(m.name);
+    DeviceRenderer renderer(kWidth, kHeight);
+    renderer.set_scene(s);
+    const DeviceFrame first = renderer.render(0.0);
+    const DeviceFrame other = renderer.render(0.7);
+    const DeviceFrame again = renderer.render(0.0);
+    const DeviceFrame fresh = draw(s, m.name);
+    EXPECT_FALSE(other.rgb == first.rgb) << "the rotation must show";
+    EXPECT_TRUE(again.rgb == first.rgb);
+    EXPECT_TRUE(fresh.rgb == first.rgb);
+    EXPECT_EQ(frame_counters(fresh), frame_counters(first));
+    // After another frame the pipeline's counters are the same; a method's work counters may be
+    // lower where it keeps a content-addressed memo across frames (kb-adaptive's boundary
+    // samples, kept while the shading state's revision is: the values are the same, fewer are
+    // evaluated).
+    for (const char* c : {"triangles_in", "triangles_culled", "triangles_drawn", "spans",
+                          "spans_hidden", "pixels_shaded", "pixels_written"})
+      EXPECT_EQ(counter(again, c), counter(first, c)) << c;
+    EXPECT_LE(counter(again, "lighting_evaluations"), counter(first, "lighting_evaluations"));
+  }
+}
+
+// A light of zero intensity adds exactly nothing: whatever the method skips or evaluates for it,
+// no pixel may change.
+TEST_P(Conformance, ADarkLightChangesNoPixel) {
+  const fw::MethodInfo& m = GetParam();
+  for (const char* name : {"teapot", "sphere-32-l2", "dodecahedron-30-l4", "triangle"}) {
+    SCOPED_TRACE(name);
+    const Scene s = paper_scene(name);
+    Scene dark = s;
+    dark.lights.push_back({LightKind::Directional, {0.3, 0.4, 0.866}, {0, 0, 0}});
+    dark.lights.push_back({LightKind::Point, {-1.0, 2.0, 3.0}, {0, 0, 0}});
+    EXPECT_TRUE(draw(dark, m.name).rgb == draw(s, m.name).rgb);
+  }
+}
+
+// Where each method evaluates, for the counting rules of firmware/counters.hpp. A new method
+// states its own here (the test fails until it does).
+enum class Sites {
+  kTriangle,         // one exact evaluation per triangle (flat)
+  kVertex,           // one per vertex of the draw, colours interpolated (Gouraud)
+  kPixel,            // one per pixel shaded
+  kSpanTerms,        // per span, each light's specular term (Kuijk-Blake), some skipped
+  kSpanTermsAll,     // the same with none skipped
+  kSamplesAndPixels  // exact samples and exact pixels, fits between (kb-adaptive)
+};
+const std::map<std::string_view, Sites> kSites = {
+    {"flat", Sites::kTriangle},
+    {"gouraud", Sites::kVertex},
+    {"phong", Sites::kPixel},
+    {"kb", Sites::kSpanTerms},
+    {"kb-noskip", Sites::kSpanTermsAll},
+    {"kb-decomposition", Sites::kSpanTerms},
+    {"kb-exact", Sites::kSpanTermsAll},
+    {"kb-adaptive", Sites::kSamplesAndPixels},
+    {"kb-adaptive-noskip", Sites::kSamplesAndPixels},
+    {"kb-adaptive-exact", Sites::kPixel},
+};
+
+TEST_P(Conformance, CountsAsTheCountersAreDefined) {
+  const fw::MethodInfo& m = GetParam();
+  const auto site = kSites.find(m.name);
+  ASSERT_NE(site, kSites.end()) << m.name << ": add its counting rule to kSites";
+  for (const char* name : {"teapot", "sphere-40-l4", "triangle-l2", "dodecahedron-30-l8"}) {
+    SCOPED_TRACE(name);
+    const Scene s = paper_scene(name);
+    const DeviceFrame f = draw(s, m.name);
+    const std::uint64_t lights = s.lights.size();  // none of them dark
+    const std::uint64_t lighting = counter(f, "lighting_evaluations");
+    const std::uint64_t specular = counter(f, "specular_evaluations");
+    const std::uint64_t shaded = counter(f, "pixels_shaded");
+    const std::uint64_t triangles = counter(f, "triangles_drawn");
+    EXPECT_LE(counter(f, "pixels_written"), shaded);
+    EXPECT_LE(counter(f, "spans_hidden"), counter(f, "spans"));
+    switch (site->second) {
+      case Sites::kTriangle:
+        EXPECT_EQ(lighting, triangles);
+        EXPECT_EQ(specular, lighting * lights);
+        break;
+      case Sites::kVertex:
+        EXPECT_GT(lighting, 0u);
+        EXPECT_LE(lighting, 3 * triangles);  // shared vertices lit once
+        EXPECT_EQ(specular, lighting * lights);
+        break;
+      case Sites::kPixel:
+        EXPECT_EQ(lighting, shaded);
+        EXPECT_EQ(specular, lighting * lights);
+        break;
+      case Sites::kSpanTerms:
+        EXPECT_EQ(lighting, 0u);
+        EXPECT_GT(specular, 0u);
+        EXPECT_LT(specular, shaded * lights);  // something skipped on every paper scene
+        break;
+      case Sites::kSpanTermsAll:
+        EXPECT_EQ(lighting, 0u);
+        EXPECT_EQ(specular, shaded * lights);
+        break;
+      case Sites::kSamplesAndPixels:
+        EXPECT_GE(lighting, counter(f, "lattice_samples"));
+        EXPECT_LE(lighting, counter(f, "lattice_samples") + shaded);
+        EXPECT_EQ(specular, lighting * lights);
+        break;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, Conformance, ::testing::ValuesIn(fw::kMethodTable),
+                         [](const auto& info) { return test_name(info.param); });
+
+// The verification variants render their method's image on every paper scene.
+TEST(Registry, VerificationVariantsRenderTheirMethodsImage) {
+  int variants = 0;
+  for (const fw::MethodInfo& m : fw::kMethodTable) {
+    if (m.same_image_as == fw::Method{}) continue;
+    ++variants;
+    const fw::MethodInfo* original = fw::find_method(m.same_image_as);
+    ASSERT_NE(original, nullptr);
+    for (const std::string& name : paper_scenes()) {
+      SCOPED_TRACE(std::string(m.name) + " / " + name);
+      const Scene s = paper_scene(name);
+      EXPECT_TRUE(draw(s, m.name).rgb == draw(s, original->name).rgb);
+    }
+  }
+  EXPECT_EQ(variants, 2);  // kb-noskip, kb-adaptive-noskip
+}
+
+// The host's list is the registry's, and every row's name parses back to its id.
+TEST(Registry, TheHostListsEveryRow) {
+  ASSERT_EQ(method_names().size(), std::size(fw::kMethodTable));
+  for (const fw::MethodInfo& m : fw::kMethodTable) {
+    EXPECT_EQ(method_from_name(m.name), m.id);
+    EXPECT_EQ(method_name(m.id), m.name);
+    EXPECT_GT(fw::Device::method_bytes(m.id), 0u) << m.name;
+  }
+  EXPECT_THROW(method_from_name("no-such-method"), std::invalid_argument);
+  // Reserved ids have no row and no state: set_method refuses them.
+  for (const fw::Method reserved :
+       {fw::Method::kDuff, fw::Method::kBishopWeimer, fw::Method::kBrown, fw::Method::kVlasic}) {
+    EXPECT_EQ(fw::find_method(reserved), nullptr);
+    EXPECT_EQ(fw::Device::method_bytes(reserved), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace tp::host
