@@ -13,6 +13,7 @@
 
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
+#include "fixedpoint/arith.hpp"
 #include "fixedpoint/normalize_fast.hpp"
 
 namespace tp::fw {
@@ -123,6 +124,20 @@ inline PowerFn unrolled_power(std::uint32_t n) {
 
 // Lighting at eye-space point p with unit normal n.
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n);
+
+// The eye-space centroid of a triangle (each coordinate rounded once): where flat evaluates, and
+// where Duff takes a point light's L and a finite eye's V.
+inline Vec3q16 eye_centroid(const Triangle& tri) {
+  const auto mean = [&](auto get) {
+    const std::int64_t sum =
+        std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
+    return q15_16::from_raw(static_cast<std::int32_t>(
+        fx::div<fx::int_q>(fx::int_q::from_raw(sum), fx::int_q::from_raw(3)).raw()));
+  };
+  return Vec3q16{mean([](const ShadeVertex& v) { return v.eye.x; }),
+                 mean([](const ShadeVertex& v) { return v.eye.y; }),
+                 mean([](const ShadeVertex& v) { return v.eye.z; })};
+}
 
 // round(255 I) (ties away from zero) of an I already in [0, 1]: what the span loops take where
 // their range is known.

@@ -1,6 +1,7 @@
-// The shading methods implemented so far (docs/CONVENTIONS.md, "Methods"), one unit each. Each
-// states what it handles exactly: all three take point lights, a finite eye and up to kMaxLights
-// lights with the exact Blinn-Phong formula; they differ in where the formula is evaluated.
+// The shading methods outside firmware/kb/ (docs/CONVENTIONS.md, "Methods"), one unit each.
+// Each states what it handles exactly: flat, Gouraud and Phong take point lights, a finite eye
+// and up to kMaxLights lights with the exact Blinn-Phong formula and differ in where it is
+// evaluated; Duff takes L and H once per triangle.
 #pragma once
 
 #include "firmware/interp.hpp"
@@ -61,6 +62,52 @@ class PhongMethod final : public ShadingMethod {
  private:
   PointShader point_;
   Counters* counters_ = nullptr;
+};
+
+// 4. Duff (shade_duff.cpp; Duff 1979, as Bishop & Weimer give it): Phong's normal interpolated
+//    linearly in SCREEN space (as the paper, and as Gouraud; not perspective-correct), with the
+//    lighting rewritten as (ax + by + c) / sqrt(dx² + exy + fy² + gx + hy + i): along a span each
+//    light's N·L and N·H numerators are forward-differenced (one addition each per pixel) and so
+//    is the radicand |N|² (two additions), then one square root and one division per pixel give
+//    1/|N| for every light; the power as exact Phong's. L and H are the paper's constants: per
+//    triangle, at its eye-space centroid (exact for directional lights seen from an eye at
+//    infinity; point lights and a finite eye approximated). Every step is exact integer
+//    arithmetic, so a pixel's value does not depend on where its span's stepping began.
+class DuffMethod final : public ShadingMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+  bool skips_hidden_pixels() const override { return true; }
+
+  // Fraction bits of the stepped normal: |N|² at twice that stays below 2^59 and its second
+  // difference 2 Σ s² (|s| <= 2^30 per component after the planes' saturation) below 2^63.
+  static constexpr int kNormalFrac = 28;
+
+ private:
+  struct LightTerm {
+    std::int32_t l[3], h[3];  // L and H, Q1.30, this triangle's
+    std::int32_t colour[3];   // Il_c, Q15.16
+  };
+  // One light's numerators on the current span: N·L and N·H at the pixel and their steps, at
+  // kNormalFrac + 30 fraction bits.
+  struct Numerators {
+    std::int64_t d = 0, dd = 0, h = 0, dh = 0;
+  };
+  void start_span(const Span& s);
+
+  const Triangle* tri_ = nullptr;
+  Counters* counters_ = nullptr;
+  ScreenPlane normal_[3];
+  std::int64_t ambient_[3] = {0, 0, 0};  // ka O_c, Q.30
+  std::int64_t diffuse_[3] = {0, 0, 0};  // kd O_c, Q.30
+  std::int64_t ks_ = 0;                  // Q.30
+  std::uint32_t exponent_ = 1;
+  PowerFn power_ = nullptr;  // the unrolled power of exponent_, or null: power()
+  int lights_ = 0;
+  LightTerm light_[kMaxLights];
+  // The span: |N|², its first and second differences, and every light's numerators.
+  std::int64_t m_ = 0, dm_ = 0, ddm_ = 0;
+  Numerators num_[kMaxLights];
 };
 
 }  // namespace tp::fw

@@ -99,6 +99,12 @@ inline constexpr MethodInfo kMethodTable[] = {
      "exact per-pixel Blinn-Phong in fixed point",
      {kExact, kExact, kExact},
      slot_of<PhongMethod>()},
+    {Method::kDuff,
+     "duff",
+     "Duff: Phong's screen-linear normal, N·L and N·H over |N| forward-differenced, one square "
+     "root and one division per pixel; L and H per triangle, at its centroid",
+     {kApprox, kApprox, kExact},
+     slot_of<DuffMethod>()},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

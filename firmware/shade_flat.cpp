@@ -4,16 +4,7 @@
 namespace tp::fw {
 
 bool FlatMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
-  // Centroid of the eye-space triangle; each coordinate sum of three Q15.16 values fits 64 bits.
-  const auto mean = [&](auto get) {
-    const std::int64_t sum =
-        std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
-    return q15_16::from_raw(static_cast<std::int32_t>(
-        fx::div<fx::int_q>(fx::int_q::from_raw(sum), fx::int_q::from_raw(3)).raw()));
-  };
-  const Vec3q16 p{mean([](const ShadeVertex& v) { return v.eye.x; }),
-                  mean([](const ShadeVertex& v) { return v.eye.y; }),
-                  mean([](const ShadeVertex& v) { return v.eye.z; })};
+  const Vec3q16 p = eye_centroid(tri);
   const auto nsum = [&](auto get) {
     return std::int64_t{get(tri.v[0]).raw()} + get(tri.v[1]).raw() + get(tri.v[2]).raw();
   };

@@ -39,7 +39,7 @@ enum class Method : std::uint32_t {
   kFlat = 1,
   kGouraud = 2,
   kPhong = 3,
-  kDuff = 4,              // reserved
+  kDuff = 4,              // Duff's forward-differenced Phong (firmware/shade_duff.cpp)
   kBishopWeimer = 5,      // reserved
   kKuijkBlake = 6,        // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
   kBrown = 7,             // reserved

@@ -150,7 +150,8 @@ DrawCounts counts_of_draw(Rig& rig, DrawCmd draw) {
 TEST(EarlyDepth, HiddenSpansAndEndsAreNotShaded) {
   for (const Method method : kImplementedMethods) {
     SCOPED_TRACE(static_cast<int>(method));
-    const bool early = method == Method::kPhong || method == Method::kKuijkBlakeAdaptive ||
+    const bool early = method == Method::kPhong || method == Method::kDuff ||
+                       method == Method::kKuijkBlakeAdaptive ||
                        method == Method::kKuijkBlakeAdaptiveNoSkip ||
                        method == Method::kKuijkBlakeAdaptiveExact;
     Rig rig(32, 32);

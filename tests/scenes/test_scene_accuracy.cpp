@@ -54,6 +54,15 @@ constexpr Measured kMeasured[] = {
     {"teapot", "gouraud", 0.9947, 1.344, 106},
     // Max 5: a few pixels at the spout's tip (see PhongMatchesReference below).
     {"teapot", "phong", 1.0000, 0.003, 5},
+    // Duff (2026-12-03, `tinyphong render SCENE -m duff --compare`, release build): its normal is
+    // screen-linear and its L and H are the centroid's; the triangle's near point light and
+    // perspective show both (docs/RESULTS.md).
+    {"sphere-32", "duff", 0.992546, 1.901, 20},
+    {"sphere-40", "duff", 0.991758, 2.102, 25},
+    {"sphere-512", "duff", 0.997923, 0.530, 9},
+    {"dodecahedron-30", "duff", 0.989970, 2.558, 23},
+    {"triangle", "duff", 0.874483, 32.007, 88},
+    {"teapot", "duff", 0.998921, 0.275, 5},
 };
 
 struct Rendered {
@@ -120,6 +129,7 @@ constexpr Measured kHighestExponent[] = {
     {"triangle", "kb-adaptive", 0.999959, 0.010, 1},
     {"triangle", "kb-adaptive-noskip", 0.999959, 0.010, 1},
     {"triangle", "kb-adaptive-exact", 0.999999, 0.000, 1},
+    {"triangle", "duff", 0.943386, 14.437, 102},  // 2026-12-03, as above
     {"sphere-512", "flat", 0.991346, 2.207, 99},
     {"sphere-512", "gouraud", 0.997280, 0.694, 100},
     {"sphere-512", "phong", 0.999997, 0.001, 1},
@@ -130,6 +140,7 @@ constexpr Measured kHighestExponent[] = {
     {"sphere-512", "kb-adaptive", 0.999897, 0.026, 1},
     {"sphere-512", "kb-adaptive-noskip", 0.999897, 0.026, 1},
     {"sphere-512", "kb-adaptive-exact", 0.999997, 0.001, 1},
+    {"sphere-512", "duff", 0.998594, 0.359, 53},  // 2026-12-03
 };
 
 class HighestExponent : public ::testing::TestWithParam<Measured> {};
