@@ -110,4 +110,70 @@ class DuffMethod final : public ShadingMethod {
   Numerators num_[kMaxLights];
 };
 
+// 5. Bishop & Weimer's fast Phong (shade_bishop_weimer.cpp; Bishop & Weimer 1986): Duff's
+//    N·L/|N| and N·H/|N| of the screen-linear normal, each replaced by its second-order
+//    two-dimensional Taylor expansion about the triangle's centre (the pixel centre nearest
+//    its screen centroid), forward-differenced: two additions per polynomial per pixel. The
+//    lights' diffuse polynomials, weighted by kd O_c Il_c, and the ambient term add into one
+//    polynomial per channel (six additions per pixel whatever the number of lights); each
+//    light's N·H polynomial addresses the exponent table (cosn_bw.hpp: 1 KiB for n <= 20, 8 KiB
+//    for n <= 164, filled when the material changes), two additions and one lookup per light
+//    per pixel; above n = 164 the power is taken by repeated squaring. L and H are the paper's
+//    constants, per triangle at its eye-space centroid, as in Duff. A light that faces away from
+//    all three vertex normals is left out of the triangle; one whose terminator crosses it
+//    keeps a diffuse polynomial of its own, clamped at zero per pixel (summed, its negative
+//    side would take light away from the others): two additions, a comparison and three
+//    multiply-adds per such light per pixel.
+class BishopWeimerMethod final : public ShadingMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+  static constexpr int kCoeffFrac = 40;  // the Taylor coefficients
+  static constexpr int kStateFrac = 36;  // the forward-differenced values
+  // A polynomial in the pixel offsets (u, v) from the expansion pixel, Q.kCoeffFrac:
+  // T(u, v) = c0 + c1 u + c2 v + c11 u² + c12 u v + c22 v².
+  struct Taylor {
+    std::int64_t c0 = 0, c1 = 0, c2 = 0, c11 = 0, c12 = 0, c22 = 0;
+  };
+  // The screen-linear normal at the expansion pixel and its steps per pixel in x and y,
+  // Q.kCoeffFrac.
+  struct NormalField {
+    std::int64_t c[3], a[3], b[3];
+  };
+  // The second-order expansion of dir·N(u, v) / |N(u, v)| about (0, 0), dir a unit vector in
+  // Q.kCoeffFrac; `saturated` is set when |N| at the centre is below 1/4 (normals more than
+  // 150° apart) or a coefficient was clamped to its range.
+  static Taylor expand(const NormalField& n, const std::int64_t dir[3], bool& saturated);
+
+ private:
+  struct Stepper {  // a polynomial along the current span, Q.kStateFrac
+    std::int64_t value = 0, delta = 0, delta2 = 0;
+  };
+  void refresh_material(const ShadeContext& ctx);
+  Stepper start(const Taylor& t, std::int64_t u, std::int64_t v, std::int64_t n,
+                bool& saturated) const;
+
+  Counters* counters_ = nullptr;
+  std::int64_t xr_ = 0, yr_ = 0;         // the expansion pixel
+  std::int64_t ambient_[3] = {0, 0, 0};  // ka O_c, Q.kStateFrac: the floor of the diffuse sum
+  Taylor diffuse_[3];    // per channel: ka O_c + Σ kd O_c Il_c N·L/|N| of the lights lighting
+                         // all three vertices
+  int terminators_ = 0;  // lights whose terminator crosses the triangle
+  Taylor terminator_[kMaxLights];                       // N·L/|N| per such light
+  std::int64_t terminator_weight_[kMaxLights][3] = {};  // kd O_c Il_c, Q.30
+  Stepper terminator_step_[kMaxLights];
+  int lights_ = 0;               // specular terms on this triangle
+  Taylor specular_[kMaxLights];  // N·H/|N| per light
+  // ks Il_c: per table unit in Q.36, or in Q.30 where the power is computed (table_size_ 0).
+  std::int64_t spec_weight_[kMaxLights][3] = {};
+  Stepper specular_step_[kMaxLights];
+  // The material the table was filled for.
+  const ShadeContext* ctx_ = nullptr;
+  std::uint64_t revision_ = 0;
+  std::uint32_t exponent_ = 0;
+  int table_size_ = 0;  // 0: above the 8 KiB table's range, power() per pixel
+  std::uint8_t table_[8192] = {};
+};
+
 }  // namespace tp::fw

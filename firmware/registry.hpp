@@ -105,6 +105,14 @@ inline constexpr MethodInfo kMethodTable[] = {
      "root and one division per pixel; L and H per triangle, at its centroid",
      {kApprox, kApprox, kExact},
      slot_of<DuffMethod>()},
+    {Method::kBishopWeimer,
+     "bishop-weimer",
+     "Bishop-Weimer fast Phong: second-order Taylor expansions of Duff's N·L/|N| and N·H/|N| "
+     "about the triangle's centre, forward-differenced; the lights' diffuse summed into one "
+     "polynomial per channel (a light whose terminator crosses the triangle apart), the power "
+     "by table lookup; L and H at the centroid",
+     {kApprox, kApprox, kApprox},
+     slot_of<BishopWeimerMethod>()},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

@@ -40,7 +40,7 @@ enum class Method : std::uint32_t {
   kGouraud = 2,
   kPhong = 3,
   kDuff = 4,              // Duff's forward-differenced Phong (firmware/shade_duff.cpp)
-  kBishopWeimer = 5,      // reserved
+  kBishopWeimer = 5,      // Bishop-Weimer fast Phong (firmware/shade_bishop_weimer.cpp)
   kKuijkBlake = 6,        // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
   kBrown = 7,             // reserved
   kVlasic = 8,            // reserved

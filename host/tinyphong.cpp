@@ -309,21 +309,28 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
     const char* name;
   } formats[] = {{tp::fw::PixelFormat::kRgb565, "RGB565"},
                  {tp::fw::PixelFormat::kRgb888, "RGB888"}};
-  // One column per distinct method state (the -noskip and -exact variants share their method's).
-  const Method columns[] = {Method::kFlat,
-                            Method::kGouraud,
-                            Method::kPhong,
-                            Method::kKuijkBlake,
-                            Method::kKuijkBlakeDecomposition,
-                            Method::kKuijkBlakeExact,
-                            Method::kKuijkBlakeAdaptive};
+  // One column per registered method, except where a method's state has the same size as an
+  // earlier one's (the -noskip and -exact variants share their method's): named below the table.
   const tp::fw::BufferCapacityCmd cap{vertices, indices};
+  std::vector<Method> columns;
+  std::string shared;
+  for (const auto& row : method_names()) {
+    const auto same = std::find_if(columns.begin(), columns.end(), [&](Method m) {
+      return tp::fw::Device::method_bytes(m) == row.slot.bytes &&
+             tp::fw::find_method(m)->slot.lights_vertices == row.slot.lights_vertices;
+    });
+    if (same == columns.end())
+      columns.push_back(row.id);
+    else
+      shared += std::string(shared.empty() ? "" : ", ") + std::string(row.name) + " as " +
+                std::string(method_name(*same));
+  }
   std::cout << "Device memory block in bytes (Device::memory_required), " << vertices
             << " vertices and " << indices << " indices, depth buffer, no write counts\n\n";
   std::cout << "| resolution | format |";
   for (const Method m : columns) std::cout << " " << method_name(m) << " |";
   std::cout << "\n|---|---|";
-  for (std::size_t i = 0; i < std::size(columns); ++i) std::cout << "---:|";
+  for (std::size_t i = 0; i < columns.size(); ++i) std::cout << "---:|";
   std::cout << "\n";
   for (const auto& size : sizes)
     for (const auto& format : formats) {
@@ -337,6 +344,7 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
             << " bytes, outside the block; method state in the block:";
   for (const Method m : columns)
     std::cout << " " << method_name(m) << " " << tp::fw::Device::method_bytes(m) << ";";
+  if (!shared.empty()) std::cout << " the same bytes: " << shared << ".";
   std::cout << "\n";
   return 0;
 }

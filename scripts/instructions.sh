@@ -12,22 +12,26 @@
 # without the image library, whose dependency libhwy executes rdtscp at load time — an
 # instruction valgrind refuses on processors that do not advertise it.
 #
-# Usage: bash scripts/instructions.sh [--scenes a,b,...] [--methods m1,m2,...] [--budget B] [--markdown]
+# Usage: bash scripts/instructions.sh [--scenes a,b,...] [--methods m1,m2,...] [--budget B]
+#                                    [--size WxH] [--markdown]
 #   defaults: every paper scene and its -l2/-l4/-l8 variants (scenes/*.json), and the methods
 #   gouraud, phong, kb, kb-adaptive. Prints one table row per scene (methods as columns).
 #   --budget B: kb-adaptive's error budget in output levels (default: each scene's, else 1).
+#   --size WxH: render at this resolution instead of each scene's own.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scenes=""
 methods="gouraud,phong,kb,kb-adaptive"
 budget=()
+size=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --scenes) scenes=$2; shift 2 ;;
     --methods) methods=$2; shift 2 ;;
     --budget) budget=(--budget "$2"); shift 2 ;;
+    --size) size=(--size "$2"); shift 2 ;;
     --markdown) shift ;;  # the only format; kept for symmetry with scripts/results.sh
-    *) echo "usage: $0 [--scenes a,b] [--methods m1,m2] [--budget B]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--scenes a,b] [--methods m1,m2] [--budget B] [--size WxH]" >&2; exit 2 ;;
   esac
 done
 command -v valgrind >/dev/null || { echo "instructions.sh: valgrind is needed (apt-get install valgrind)" >&2; exit 1; }
@@ -49,7 +53,7 @@ for s in ${scenes//,/ }; do
   for m in ${methods//,/ }; do
     out="$tmp/cg.out"
     log=$(valgrind --tool=callgrind --toggle-collect='tp::fw::Device::draw(tp::fw::DrawCmd const&)' \
-      --callgrind-out-file="$out" "$bin" "scenes/$s.json" --method "$m" "${budget[@]}" 2>/dev/null)
+      --callgrind-out-file="$out" "$bin" "scenes/$s.json" --method "$m" "${budget[@]}" "${size[@]}" 2>/dev/null)
     px=$(echo "$log" | awk '$1 == "pixels_written" {print $3}')
     ir=$(awk '/^summary:/ {print $2}' "$out")
     if [ -z "$px" ] || [ "$px" = 0 ] || [ -z "$ir" ]; then row+=" — |"; continue; fi

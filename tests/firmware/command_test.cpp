@@ -138,9 +138,9 @@ TEST(Commands, TypedErrorsChangeNothing) {
                    l.type = LightType::kPoint;
                    l.position = Vec3q16{q16(0), q16(20000), q16(0)};
                  }));
-  // Ids that no method implements yet (update as methods land): 0, the reserved 5, 7, 8, and
+  // Ids that no method implements yet (update as methods land): 0, the reserved 7, 8, and
   // ids past the enum.
-  for (std::uint32_t id : {0u, 5u, 7u, 8u, 10u, 99u})
+  for (std::uint32_t id : {0u, 7u, 8u, 10u, 99u})
     expect_refused("method", Error::kUnknownMethod,
                    [id](Loaded& r) { return r.dev.set_method(static_cast<Method>(id)); });
   expect_refused("vertices beyond capacity", Error::kIndexOutOfRange, [](Loaded& r) {

@@ -63,6 +63,14 @@ constexpr Measured kMeasured[] = {
     {"dodecahedron-30", "duff", 0.989970, 2.558, 23},
     {"triangle", "duff", 0.874483, 32.007, 88},
     {"teapot", "duff", 0.998921, 0.275, 5},
+    // Bishop-Weimer (2026-12-03, as Duff): Duff's functions by their Taylor expansions; the
+    // teapot's 131 are a few pixels of thin triangles near the silhouette (docs/RESULTS.md).
+    {"sphere-32", "bishop-weimer", 0.993731, 1.599, 19},
+    {"sphere-40", "bishop-weimer", 0.990115, 2.521, 80},
+    {"sphere-512", "bishop-weimer", 0.997888, 0.539, 9},
+    {"dodecahedron-30", "bishop-weimer", 0.991897, 2.066, 50},
+    {"triangle", "bishop-weimer", 0.881434, 30.234, 78},
+    {"teapot", "bishop-weimer", 0.998670, 0.339, 131},
 };
 
 struct Rendered {
@@ -130,6 +138,8 @@ constexpr Measured kHighestExponent[] = {
     {"triangle", "kb-adaptive-noskip", 0.999959, 0.010, 1},
     {"triangle", "kb-adaptive-exact", 0.999999, 0.000, 1},
     {"triangle", "duff", 0.943386, 14.437, 102},  // 2026-12-03, as above
+    // Above 164 Bishop-Weimer takes the power by repeated squaring (its 8 KiB table's range).
+    {"triangle", "bishop-weimer", 0.943895, 14.307, 103},
     {"sphere-512", "flat", 0.991346, 2.207, 99},
     {"sphere-512", "gouraud", 0.997280, 0.694, 100},
     {"sphere-512", "phong", 0.999997, 0.001, 1},
@@ -141,6 +151,7 @@ constexpr Measured kHighestExponent[] = {
     {"sphere-512", "kb-adaptive-noskip", 0.999897, 0.026, 1},
     {"sphere-512", "kb-adaptive-exact", 0.999997, 0.001, 1},
     {"sphere-512", "duff", 0.998594, 0.359, 53},  // 2026-12-03
+    {"sphere-512", "bishop-weimer", 0.998614, 0.353, 51},
 };
 
 class HighestExponent : public ::testing::TestWithParam<Measured> {};

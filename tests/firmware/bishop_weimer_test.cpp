@@ -1,0 +1,112 @@
+// Bishop & Weimer's Taylor coefficients (firmware/shade_bishop_weimer.cpp) against a numerical
+// expansion of the exact function they approximate, f(u, v) = D·N(u, v) / |N(u, v)| with the
+// screen-linear normal N(u, v) = C + A u + B v: the expansion is exact at the centre, and its
+// six coefficients are f's derivatives there (central differences in double).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+
+#include <glm/glm.hpp>
+
+#include "firmware/methods.hpp"
+
+namespace tp::fw {
+namespace {
+
+using glm::dvec3;
+constexpr int kF = BishopWeimerMethod::kCoeffFrac;
+constexpr double kUnit = static_cast<double>(std::int64_t{1} << kF);
+
+std::int64_t fixed(double v) { return std::llround(v * kUnit); }
+
+struct Case {
+  dvec3 c, a, b, d;
+};
+
+double f(const Case& k, double u, double v) {
+  const dvec3 n = k.c + u * k.a + v * k.b;
+  return glm::dot(k.d, n) / glm::length(n);
+}
+
+// The largest error of the six coefficients against the numerical ones, relative to the size
+// of each derivative's scale (|A|, |A|² ...) over random cases of the given curvature.
+TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_unit = [&] {
+    dvec3 v;
+    do v = dvec3(unit(rng), unit(rng), unit(rng));
+    while (glm::length(v) < 0.2 || glm::length(v) > 1.0);
+    return glm::normalize(v);
+  };
+  double worst[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < 2000; ++i) {
+    // Curvature: the normal turns by up to ~0.05 rad per pixel (a 20-pixel triangle whose
+    // normals are a radian apart); the centre's normal a mean of unit normals (|C| in [0.8, 1]).
+    const double step = 0.05 * (i % 10 + 1) / 10.0;
+    Case k{random_unit() * (0.8 + 0.2 * (unit(rng) + 1) / 2), random_unit() * step,
+           random_unit() * step, random_unit()};
+    BishopWeimerMethod::NormalField field{};
+    for (int c = 0; c < 3; ++c) {
+      field.c[c] = fixed(k.c[c]);
+      field.a[c] = fixed(k.a[c]);
+      field.b[c] = fixed(k.b[c]);
+    }
+    const std::int64_t d[3] = {fixed(k.d.x), fixed(k.d.y), fixed(k.d.z)};
+    bool saturated = false;
+    const BishopWeimerMethod::Taylor t = BishopWeimerMethod::expand(field, d, saturated);
+    ASSERT_FALSE(saturated);
+    // Steps: 1e-3 pixel for the first derivatives, 2e-2 for the second (their rounding error
+    // ~eps/h² would otherwise dominate; the truncation error is h² of the fourth derivative).
+    const double h = 1e-3, g = 2e-2;
+    const double f00 = f(k, 0, 0);
+    const double fu = (f(k, h, 0) - f(k, -h, 0)) / (2 * h);
+    const double fv = (f(k, 0, h) - f(k, 0, -h)) / (2 * h);
+    const double fuu = (f(k, g, 0) - 2 * f00 + f(k, -g, 0)) / (g * g);
+    const double fvv = (f(k, 0, g) - 2 * f00 + f(k, 0, -g)) / (g * g);
+    const double fuv = (f(k, g, g) - f(k, g, -g) - f(k, -g, g) + f(k, -g, -g)) / (4 * g * g);
+    const double want[6] = {f00, fu, fv, fuu / 2, fuv, fvv / 2};
+    const double got[6] = {t.c0 / kUnit,  t.c1 / kUnit,  t.c2 / kUnit,
+                           t.c11 / kUnit, t.c12 / kUnit, t.c22 / kUnit};
+    const double scale[6] = {1, step, step, step * step, step * step, step * step};
+    for (int j = 0; j < 6; ++j)
+      worst[j] = std::max(worst[j], std::abs(got[j] - want[j]) / scale[j]);
+  }
+  std::printf("worst error / scale: c0 %.3g, c1 %.3g, c2 %.3g, c11 %.3g, c12 %.3g, c22 %.3g\n",
+              worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]);
+  // c0 is the exact value at the centre (one rsqrt and a product in Q.40): within 2^-30.
+  EXPECT_LT(worst[0], std::ldexp(1.0, -30));
+  // The others: measured 2026-12-03 2.3e-9 (first order) and 0.8e-6 / 4.4e-6 (second order) of
+  // their scale, which is the differences' own truncation error (g² times the fourth
+  // derivatives); pinned at 1e-5.
+  for (int j = 1; j < 6; ++j) EXPECT_LT(worst[j], 1e-5) << j;
+}
+
+// The seed's printed T5 numerator "3ig² − 4cdi − 4agi" does not scale with the numerator's
+// (a, b, c): doubling D must double every coefficient, and does.
+TEST(BishopWeimer, CoefficientsScaleWithTheNumerator) {
+  BishopWeimerMethod::NormalField field{};
+  const dvec3 c = glm::normalize(dvec3(0.2, 0.3, 0.9)), a(0.01, -0.02, 0.005),
+              b(-0.015, 0.01, 0.02);
+  for (int k = 0; k < 3; ++k) {
+    field.c[k] = fixed(c[k]);
+    field.a[k] = fixed(a[k]);
+    field.b[k] = fixed(b[k]);
+  }
+  const dvec3 dir = glm::normalize(dvec3(0.5, 0.5, 0.7));
+  const std::int64_t d1[3] = {fixed(dir.x / 2), fixed(dir.y / 2), fixed(dir.z / 2)};
+  const std::int64_t d2[3] = {2 * d1[0], 2 * d1[1], 2 * d1[2]};
+  bool saturated = false;
+  const auto t1 = BishopWeimerMethod::expand(field, d1, saturated);
+  const auto t2 = BishopWeimerMethod::expand(field, d2, saturated);
+  EXPECT_FALSE(saturated);
+  const std::int64_t one[6] = {t1.c0, t1.c1, t1.c2, t1.c11, t1.c12, t1.c22};
+  const std::int64_t two[6] = {t2.c0, t2.c1, t2.c2, t2.c11, t2.c12, t2.c22};
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(static_cast<double>(two[j]), 2.0 * one[j], 8.0) << j;
+}
+
+}  // namespace
+}  // namespace tp::fw
