@@ -144,7 +144,9 @@ class BishopWeimerMethod final : public ShadingMethod {
   // The second-order expansion of dir·N(u, v) / |N(u, v)| about (0, 0), dir a unit vector in
   // Q.kCoeffFrac; `saturated` is set when |N| at the centre is below 1/4 (normals more than
   // 150° apart) or a coefficient was clamped to its range.
-  static Taylor expand(const NormalField& n, const std::int64_t dir[3], bool& saturated);
+  // With `quadratic` false, the first-order terms only (the others 0).
+  static Taylor expand(const NormalField& n, const std::int64_t dir[3], bool quadratic,
+                       bool& saturated);
 
  private:
   struct Stepper {  // a polynomial along the current span, Q.kStateFrac

@@ -16,18 +16,37 @@ using Coeff = fx::Q<22, kF, std::int64_t>;
 // Q.30 to Q.kF, by a multiplication (the values may be negative).
 constexpr std::int64_t kQ30ToCoeff = std::int64_t{1} << (kF - 30);
 
-// Products and bounds of the coefficients, Q.kF. Not inlined: expand() takes some forty of
-// these 128-bit products per vector and triangle, and each inlined copy is ~100 bytes of
-// Cortex-M code (the 64x64-bit product from 32-bit limbs).
-[[gnu::noinline]] std::int64_t mul(std::int64_t a, std::int64_t b) {
-  return fx::mul_shift_right(a, b, kF);
-}
-std::int64_t dot(const std::int64_t a[3], const std::int64_t b[3]) {
-  return mul(a[0], b[0]) + mul(a[1], b[1]) + mul(a[2], b[2]);
-}
 std::int64_t clamp_to(std::int64_t v, std::int64_t limit, bool& saturated) {
   if (v > limit || v < -limit) saturated = true;
   return v > limit ? limit : (v < -limit ? -limit : v);
+}
+// |v| in unsigned arithmetic (defined for every v).
+std::uint64_t mag(std::int64_t v) {
+  const auto u = static_cast<std::uint64_t>(v);
+  return v < 0 ? 0 - u : u;
+}
+
+// Products of the coefficients, Q.kF, saturated to ±2^61 (and `saturated` set) where they would
+// not fit: a sliver's steps can be huge (the fuzzed command streams make them), and with every
+// product within 2^61 the sums of three or four in expand() stay inside 64 bits. Not inlined:
+// expand() takes some forty of these 128-bit products per vector and triangle, and each inlined
+// copy is ~100 bytes of Cortex-M code (the 64x64-bit product from 32-bit limbs).
+[[gnu::noinline]] std::int64_t mul(std::int64_t a, std::int64_t b, bool& saturated) {
+  constexpr std::int64_t kLimit = std::int64_t{1} << 61;
+  // |a b| >= 2^(width(a) + width(b) - 2): above 2^(63 + kF) the result is at least 2^62, so
+  // saturating it is right; below, it is exact in 64 bits and clamped.
+  if (std::bit_width(mag(a)) + std::bit_width(mag(b)) > 63 + kF) {
+    saturated = true;
+    return (a < 0) != (b < 0) ? -kLimit : kLimit;
+  }
+  return clamp_to(fx::mul_shift_right(a, b, kF), kLimit, saturated);
+}
+// A dot product of Q.kF vectors, within ±2^61 like the products (three of them sum below
+// 2^63; the callers double some).
+std::int64_t dot(const std::int64_t a[3], const std::int64_t b[3], bool& saturated) {
+  const std::int64_t sum =
+      mul(a[0], b[0], saturated) + mul(a[1], b[1], saturated) + mul(a[2], b[2], saturated);
+  return clamp_to(sum, std::int64_t{1} << 61, saturated);
 }
 // |N| at the centre at least 1/4: below, the expansion is meaningless (normals more than 150°
 // apart on one triangle) and 1/|N|^5 would leave the coefficients' range.
@@ -41,7 +60,6 @@ constexpr std::int64_t kMaxQuadratic = std::int64_t{1} << (kF + 8);
 
 // c·k for an integer k, saturated to ±2^61 (the span start's terms; |k| < 2^40).
 std::int64_t scaled(std::int64_t c, std::int64_t k, bool& saturated) {
-  const auto mag = [](std::int64_t v) { return static_cast<std::uint64_t>(v < 0 ? -v : v); };
   if (std::bit_width(mag(c)) + std::bit_width(mag(k)) > 61) {
     saturated = true;
     return (c < 0) != (k < 0) ? -(std::int64_t{1} << 61) : (std::int64_t{1} << 61);
@@ -82,32 +100,36 @@ bool faces_towards(const Triangle& tri, const Vec3u& d) {
 // (a, b, c). tests/firmware/bishop_weimer_test.cpp checks every coefficient against a numerical
 // expansion of the exact function.)
 BishopWeimerMethod::Taylor BishopWeimerMethod::expand(const NormalField& n,
-                                                      const std::int64_t dir[3], bool& saturated) {
-  const std::int64_t p0 = dot(dir, n.c), p1 = dot(dir, n.a), p2 = dot(dir, n.b);
-  std::int64_t q0 = dot(n.c, n.c);
-  const std::int64_t q1 = 2 * dot(n.c, n.a), q2 = 2 * dot(n.c, n.b);
-  const std::int64_t q11 = dot(n.a, n.a), q12 = 2 * dot(n.a, n.b), q22 = dot(n.b, n.b);
+                                                      const std::int64_t dir[3], bool quadratic,
+                                                      bool& saturated) {
+  const auto m = [&saturated](std::int64_t a, std::int64_t b) { return mul(a, b, saturated); };
+  const std::int64_t p0 = dot(dir, n.c, saturated), p1 = dot(dir, n.a, saturated),
+                     p2 = dot(dir, n.b, saturated);
+  std::int64_t q0 = dot(n.c, n.c, saturated);
+  const std::int64_t q1 = 2 * dot(n.c, n.a, saturated), q2 = 2 * dot(n.c, n.b, saturated);
+  const std::int64_t q11 = quadratic ? dot(n.a, n.a, saturated) : 0,
+                     q12 = quadratic ? 2 * dot(n.a, n.b, saturated) : 0,
+                     q22 = quadratic ? dot(n.b, n.b, saturated) : 0;
   if (q0 < kMinCentreSquare) {
     q0 = kMinCentreSquare;
     saturated = true;
   }
   const std::int64_t r = fx::rsqrt<Coeff>(Coeff::from_raw(q0)).raw();
-  const std::int64_t r2 = mul(r, r);
-  const std::int64_t r3 = mul(r2, r);
-  const std::int64_t r5 = mul(r3, r2);
+  const std::int64_t r2 = m(r, r);
+  const std::int64_t r3 = m(r2, r);
+  const std::int64_t r5 = m(r3, r2);
   Taylor t;
-  t.c0 = p0 == 0 ? 0 : mul(p0, r);
-  t.c1 = mul(p1, r) - mul(mul(p0, q1), r3) / 2;
-  t.c2 = mul(p2, r) - mul(mul(p0, q2), r3) / 2;
-  const std::int64_t f_uu =
-      -mul(mul(p1, q1), r3) + 3 * mul(mul(p0, mul(q1, q1)), r5) / 4 - mul(mul(p0, q11), r3);
-  const std::int64_t f_vv =
-      -mul(mul(p2, q2), r3) + 3 * mul(mul(p0, mul(q2, q2)), r5) / 4 - mul(mul(p0, q22), r3);
-  const std::int64_t f_uv = -(mul(mul(p1, q2), r3) + mul(mul(p2, q1), r3)) / 2 +
-                            3 * mul(mul(p0, mul(q1, q2)), r5) / 4 - mul(mul(p0, q12), r3) / 2;
+  t.c0 = p0 == 0 ? 0 : m(p0, r);
+  t.c1 = m(p1, r) - m(m(p0, q1), r3) / 2;
+  t.c2 = m(p2, r) - m(m(p0, q2), r3) / 2;
   t.c0 = clamp_to(t.c0, kMaxLinear, saturated);
   t.c1 = clamp_to(t.c1, kMaxLinear, saturated);
   t.c2 = clamp_to(t.c2, kMaxLinear, saturated);
+  if (!quadratic) return t;  // first order only (a steep triangle, setup())
+  const std::int64_t f_uu = -m(m(p1, q1), r3) + 3 * m(m(p0, m(q1, q1)), r5) / 4 - m(m(p0, q11), r3);
+  const std::int64_t f_vv = -m(m(p2, q2), r3) + 3 * m(m(p0, m(q2, q2)), r5) / 4 - m(m(p0, q22), r3);
+  const std::int64_t f_uv = -(m(m(p1, q2), r3) + m(m(p2, q1), r3)) / 2 +
+                            3 * m(m(p0, m(q1, q2)), r5) / 4 - m(m(p0, q12), r3) / 2;
   t.c11 = clamp_to(f_uu / 2, kMaxQuadratic, saturated);
   t.c12 = clamp_to(f_uv, kMaxQuadratic, saturated);
   t.c22 = clamp_to(f_vv / 2, kMaxQuadratic, saturated);
@@ -156,6 +178,13 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     field.a[c] = fx::round_shift_right(plane.step_x(), kStep);
     field.b[c] = fx::round_shift_right(plane.step_y(tri), kStep);
   }
+  // A triangle whose normal turns by more than a unit per pixel is less than a pixel across in
+  // that direction: its second-order terms would extrapolate the steepest curvature over its
+  // pixels (and their products leave 64 bits). It is shaded by the first-order expansion.
+  bool steep = false;
+  for (int c = 0; c < 3; ++c)
+    steep = steep || mag(field.a[c]) > (std::uint64_t{1} << kF) ||
+            mag(field.b[c]) > (std::uint64_t{1} << kF);
 
   // The lights' constant vectors, at the eye-space centroid (Duff's, methods.hpp).
   const Vec3q16 p = eye_centroid(tri);
@@ -182,7 +211,7 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     if (!diffuse_away) {  // weighted by kd O_c Il_c (Q.30 × Q.16)
       const std::int64_t d[3] = {lv.x.raw() * kQ30ToCoeff, lv.y.raw() * kQ30ToCoeff,
                                  lv.z.raw() * kQ30ToCoeff};
-      const Taylor t = expand(field, d, saturated);
+      const Taylor t = expand(field, d, !steep, saturated);
       std::int64_t w[3];
       for (int c = 0; c < 3; ++c)
         w[c] = fx::mul_shift_right(fx::mul_sat<q1_30>(m.kd, m.color[c]).raw(), l.color[c].raw(),
@@ -206,7 +235,7 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     if (!specular_away && m.ks.raw() != 0) {
       const std::int64_t d[3] = {h.x.raw() * kQ30ToCoeff, h.y.raw() * kQ30ToCoeff,
                                  h.z.raw() * kQ30ToCoeff};
-      specular_[lights_] = expand(field, d, saturated);
+      specular_[lights_] = expand(field, d, !steep, saturated);
       for (int c = 0; c < 3; ++c) {
         // ks Il_c per unit of what the pixel loop multiplies it by: a table entry (255 for
         // 1.0) in Q.36, or a power in Q.24 with the weight in Q.30.

@@ -499,7 +499,7 @@ const std::vector<Bound>& bounds() {
       {"exponent-n32", "bishop-weimer", 9, 0.325, 0},
       {"exponent-n100", "bishop-weimer", 12, 0.340, 0},
       {"exponent-n316", "bishop-weimer", 20, 0.356, 0},
-      {"exponent-n1000", "bishop-weimer", 24, 0.271, 0},
+      {"exponent-n1000", "bishop-weimer", 24, 0.272, 0},
       {"exponent-n3162", "bishop-weimer", 29, 0.263, 0},
       {"exponent-n10000", "bishop-weimer", 45, 0.301, 0},
       {"span-1024", "bishop-weimer", 120, 11.033, 0},
@@ -519,16 +519,16 @@ const std::vector<Bound>& bounds() {
       {"sliver-needles", "bishop-weimer", 86, 7.277, 0},
       {"sliver-degenerate", "bishop-weimer", 10, 0.683, 0},
       {"near-plane", "bishop-weimer", 70, 13.339, 0},
-      {"scale-large", "bishop-weimer", 125, 1.145, 0},
+      {"scale-large", "bishop-weimer", 20, 1.141, 0},
       {"scale-huge", "bishop-weimer", 51, 5.121, 0},
-      {"scale-small", "bishop-weimer", 27, 0.656, 0},
+      {"scale-small", "bishop-weimer", 16, 0.656, 0},
       {"scale-tiny", "bishop-weimer", 22, 0.899, 0},
       {"lights-16", "bishop-weimer", 7, 0.449, 0},
       {"normals-near-minus-o", "bishop-weimer", 3, 0.051, 0},
       {"antipodal-normals", "bishop-weimer", 154, 26.755, 0},
       {"ab-min", "bishop-weimer", 3, 0.069, 0},
       {"ab-max", "bishop-weimer", 57, 0.161, 0},
-      {"ab-wide", "bishop-weimer", 4, 0.158, 0},
+      {"ab-wide", "bishop-weimer", 13, 0.159, 0},
   };
   return table;
 }

@@ -57,7 +57,7 @@ TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
     }
     const std::int64_t d[3] = {fixed(k.d.x), fixed(k.d.y), fixed(k.d.z)};
     bool saturated = false;
-    const BishopWeimerMethod::Taylor t = BishopWeimerMethod::expand(field, d, saturated);
+    const BishopWeimerMethod::Taylor t = BishopWeimerMethod::expand(field, d, true, saturated);
     ASSERT_FALSE(saturated);
     // Steps: 1e-3 pixel for the first derivatives, 2e-2 for the second (their rounding error
     // ~eps/h² would otherwise dominate; the truncation error is h² of the fourth derivative).
@@ -100,8 +100,8 @@ TEST(BishopWeimer, CoefficientsScaleWithTheNumerator) {
   const std::int64_t d1[3] = {fixed(dir.x / 2), fixed(dir.y / 2), fixed(dir.z / 2)};
   const std::int64_t d2[3] = {2 * d1[0], 2 * d1[1], 2 * d1[2]};
   bool saturated = false;
-  const auto t1 = BishopWeimerMethod::expand(field, d1, saturated);
-  const auto t2 = BishopWeimerMethod::expand(field, d2, saturated);
+  const auto t1 = BishopWeimerMethod::expand(field, d1, true, saturated);
+  const auto t2 = BishopWeimerMethod::expand(field, d2, true, saturated);
   EXPECT_FALSE(saturated);
   const std::int64_t one[6] = {t1.c0, t1.c1, t1.c2, t1.c11, t1.c12, t1.c22};
   const std::int64_t two[6] = {t2.c0, t2.c1, t2.c2, t2.c11, t2.c12, t2.c22};
