@@ -124,10 +124,10 @@ class DuffMethod final : public ShadingMethod {
 //    keeps a diffuse polynomial of its own, clamped at zero per pixel (summed, its negative
 //    side would take light away from the others): two additions, a comparison and three
 //    multiply-adds per such light per pixel.
-class BishopWeimerMethod final : public ShadingMethod {
+class BishopWeimerMethod : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
-  void shade_span(const Span& s, Rgb8* out) override;
+  void shade_span(const Span& s, Rgb8* out) final;
 
   static constexpr int kCoeffFrac = 40;  // the Taylor coefficients
   static constexpr int kStateFrac = 36;  // the forward-differenced values
@@ -136,17 +136,45 @@ class BishopWeimerMethod final : public ShadingMethod {
   struct Taylor {
     std::int64_t c0 = 0, c1 = 0, c2 = 0, c11 = 0, c12 = 0, c22 = 0;
   };
-  // The screen-linear normal at the expansion pixel and its steps per pixel in x and y,
-  // Q.kCoeffFrac.
-  struct NormalField {
+  // A screen-linear vector (the normal; in the finite-eye method also H and a point light's L)
+  // at the expansion pixel and its steps per pixel in x and y, Q.kCoeffFrac.
+  struct VectorField {
     std::int64_t c[3], a[3], b[3];
   };
   // The second-order expansion of dir·N(u, v) / |N(u, v)| about (0, 0), dir a unit vector in
   // Q.kCoeffFrac; `saturated` is set when |N| at the centre is below 1/4 (normals more than
   // 150° apart) or a coefficient was clamped to its range.
   // With `quadratic` false, the first-order terms only (the others 0).
-  static Taylor expand(const NormalField& n, const std::int64_t dir[3], bool quadratic,
+  static Taylor expand(const VectorField& n, const std::int64_t dir[3], bool quadratic,
                        bool& saturated);
+  // The same for two varying vectors, N(u, v)·D(u, v) / (|N(u, v)| |D(u, v)|): the paper's
+  // finite-eye expression (D = H), and a point light's diffuse term (D = L). First order only
+  // where `quadratic` is false or D turns by more than a unit per pixel.
+  static Taylor expand_pair(const VectorField& n, const VectorField& d, bool quadratic,
+                            bool& saturated);
+  // Whether a field changes by more than its centre's length per pixel (a triangle less than a
+  // pixel across in that direction, or a point light within a pixel of it).
+  static bool steep(const VectorField& f);
+  // A term whose vector faces away from every vertex normal by this much (Q1.30) adds nothing.
+  static constexpr std::int64_t kAwayMargin = std::int64_t{1} << 18;  // 2^-12
+
+ protected:
+  // setup()'s parts, shared with the finite-eye method. begin(): the counters, the exponent
+  // table, the expansion pixel, the screen-linear normal there (and whether it is steep), the
+  // ambient polynomial; `lam` the expansion pixel's edge weights, for further fields.
+  void begin(const Triangle& tri, const ShadeContext& ctx, VectorField& normal, bool& steep_normal,
+             Lambdas& lam);
+  // The field of three vertex vectors (any fixed-point format, |v| <= 2^33 per component).
+  static VectorField screen_field(const Triangle& tri, const Lambdas& lam,
+                                  const std::int64_t v[3][3]);
+  // A light's N·L term weighted by kd O_c Il_c: into the channels' sum where it lights the whole
+  // triangle, else a polynomial of its own (clamped at zero per pixel).
+  void add_diffuse(const Taylor& t, const LightState& l, const MaterialCmd& m, bool whole);
+  // A light's N·H term, weighted by ks Il_c.
+  void add_specular(const Taylor& t, const LightState& l, const MaterialCmd& m);
+  // Keeps the sums in the coefficients' range; counts a saturation.
+  void finish(bool saturated);
+  Counters* counters() const { return counters_; }
 
  private:
   struct Stepper {  // a polynomial along the current span, Q.kStateFrac
@@ -176,6 +204,21 @@ class BishopWeimerMethod final : public ShadingMethod {
   std::uint32_t exponent_ = 0;
   int table_size_ = 0;  // 0: above the 8 KiB table's range, power() per pixel
   std::uint8_t table_[8192] = {};
+};
+
+// 5b. Bishop & Weimer's finite-eye extension (shade_bishop_weimer_finite.cpp): the specular
+//    term N·H / (|N| |H|) with H varying over the triangle as well, H interpolated linearly in
+//    screen space from the halfway vectors at the three vertices (the paper interpolates the
+//    eye vector E and adds the constant L; this takes each vertex's own L too, so point lights
+//    vary as well), expanded to second order about the same centre; a point light's diffuse
+//    term N·L / (|N| |L|) likewise, with L = P_light - P interpolated unnormalised (exact in
+//    direction where screen space is affine in eye space: orthographic views). A directional
+//    light's diffuse, and the specular of one whose H is the same at all three vertices (the
+//    eye at infinity), are bishop-weimer's. The pixel loop is bishop-weimer's: the extension
+//    costs only setup.
+class BishopWeimerFiniteMethod final : public BishopWeimerMethod {
+ public:
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
 };
 
 }  // namespace tp::fw

@@ -113,6 +113,13 @@ inline constexpr MethodInfo kMethodTable[] = {
      "by table lookup; L and H at the centroid",
      {kApprox, kApprox, kApprox},
      slot_of<BishopWeimerMethod>()},
+    {Method::kBishopWeimerFinite,
+     "bishop-weimer-finite",
+     "Bishop-Weimer's finite-eye extension: N·H/(|N||H|) with H interpolated from the vertices' "
+     "halfway vectors, and a point light's N·L/(|N||L|) with L from the vertices, each expanded "
+     "to second order about the centre; otherwise bishop-weimer (same pixel loop)",
+     {kApprox, kApprox, kApprox},
+     slot_of<BishopWeimerFiniteMethod>()},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

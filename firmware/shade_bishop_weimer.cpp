@@ -71,18 +71,17 @@ std::int64_t add_sat(std::int64_t a, std::int64_t b, bool& saturated) {
   return clamp_to(a + b, std::int64_t{1} << 61, saturated);
 }
 
-// A light that faces away from all three vertex normals by at least this (Q1.30) adds nothing
-// anywhere on the triangle: N(x, y) is a convex combination of them.
-constexpr std::int64_t kAwayMargin = std::int64_t{1} << 18;  // 2^-12
+// A light that faces away from all three vertex normals adds nothing anywhere on the triangle:
+// N(x, y) is a convex combination of them.
 bool faces_away(const Triangle& tri, const Vec3u& d) {
   for (const ShadeVertex& v : tri.v)
-    if (fx::dot<q1_30>(v.normal, d).raw() > -kAwayMargin) return false;
+    if (fx::dot<q1_30>(v.normal, d).raw() > -BishopWeimerMethod::kAwayMargin) return false;
   return true;
 }
 // ... and one that lights all three by at least as much lights every point of it.
 bool faces_towards(const Triangle& tri, const Vec3u& d) {
   for (const ShadeVertex& v : tri.v)
-    if (fx::dot<q1_30>(v.normal, d).raw() < kAwayMargin) return false;
+    if (fx::dot<q1_30>(v.normal, d).raw() < BishopWeimerMethod::kAwayMargin) return false;
   return true;
 }
 
@@ -99,7 +98,7 @@ bool faces_towards(const Triangle& tri, const Vec3u& d) {
 // seed's printed T5 reads "3ig²" where the derivative gives 3cg²: the numerator must scale with
 // (a, b, c). tests/firmware/bishop_weimer_test.cpp checks every coefficient against a numerical
 // expansion of the exact function.)
-BishopWeimerMethod::Taylor BishopWeimerMethod::expand(const NormalField& n,
+BishopWeimerMethod::Taylor BishopWeimerMethod::expand(const VectorField& n,
                                                       const std::int64_t dir[3], bool quadratic,
                                                       bool& saturated) {
   const auto m = [&saturated](std::int64_t a, std::int64_t b) { return mul(a, b, saturated); };
@@ -136,6 +135,68 @@ BishopWeimerMethod::Taylor BishopWeimerMethod::expand(const NormalField& n,
   return t;
 }
 
+// The same for f = P / sqrt(Q R) with two screen-linear vectors N and D: P = N·D, Q = |N|²,
+// R = |D|², each quadratic in (u, v) (the paper's finite-eye a..r, with m = D·D, n = 2 D·E,
+// o = E·E as its list must read). Both fields are first scaled to unit length at the centre,
+// which leaves f unchanged and makes Q(0, 0) = R(0, 0) = 1; then with S = Q R and w = S^(-1/2):
+//   S_u = q1 + r1,  S_uu = 2 (q11 + q1 r1 + r11),  S_uv = q12 + q1 r2 + q2 r1 + r12
+//   f = p0,  f_u = p1 − ½ p0 S_u
+//   f_uu = 2 p11 − p1 S_u + p0 (¾ S_u² − ½ S_uu)
+//   f_uv = p12 − ½ (p1 S_v + p2 S_u) + p0 (¾ S_u S_v − ½ S_uv)
+// (and f_v, f_vv by symmetry). With D constant this is expand()'s expansion.
+BishopWeimerMethod::Taylor BishopWeimerMethod::expand_pair(const VectorField& n_in,
+                                                           const VectorField& d_in, bool quadratic,
+                                                           bool& saturated) {
+  const auto m = [&saturated](std::int64_t a, std::int64_t b) { return mul(a, b, saturated); };
+  const auto d3 = [&saturated](const std::int64_t a[3], const std::int64_t b[3]) {
+    return dot(a, b, saturated);
+  };
+  // A centre shorter than 1/4 (normals more than 150° apart, or a point light nearer the
+  // centre than a quarter of the vertices' distance, where no expansion about the centre
+  // describes the spot) is taken as 1/4 long, and counted.
+  const auto unit = [&](const VectorField& f) {
+    std::int64_t q0 = d3(f.c, f.c);
+    if (q0 < kMinCentreSquare) {
+      q0 = kMinCentreSquare;
+      saturated = true;
+    }
+    const std::int64_t r = fx::rsqrt<Coeff>(Coeff::from_raw(q0)).raw();
+    // Components up to 2^8 (a step of 256 centre lengths per pixel; first order only beyond
+    // one): the dot products below stay under 2^58 and the sums of the products under 2^63.
+    constexpr std::int64_t kLimit = std::int64_t{1} << (kF + 8);
+    VectorField u{};
+    for (int c = 0; c < 3; ++c) {
+      u.c[c] = clamp_to(m(f.c[c], r), kLimit, saturated);
+      u.a[c] = clamp_to(m(f.a[c], r), kLimit, saturated);
+      u.b[c] = clamp_to(m(f.b[c], r), kLimit, saturated);
+    }
+    return u;
+  };
+  const VectorField n = unit(n_in), d = unit(d_in);
+  quadratic = quadratic && !steep(d);
+  const std::int64_t p0 = d3(n.c, d.c), p1 = d3(n.c, d.a) + d3(n.a, d.c),
+                     p2 = d3(n.c, d.b) + d3(n.b, d.c);
+  const std::int64_t q1 = 2 * d3(n.c, n.a), q2 = 2 * d3(n.c, n.b);
+  const std::int64_t r1 = 2 * d3(d.c, d.a), r2 = 2 * d3(d.c, d.b);
+  const std::int64_t su = q1 + r1, sv = q2 + r2;
+  Taylor t;
+  t.c0 = clamp_to(p0, kMaxLinear, saturated);
+  t.c1 = clamp_to(p1 - m(p0, su) / 2, kMaxLinear, saturated);
+  t.c2 = clamp_to(p2 - m(p0, sv) / 2, kMaxLinear, saturated);
+  if (!quadratic) return t;
+  const std::int64_t p11 = d3(n.a, d.a), p12 = d3(n.a, d.b) + d3(n.b, d.a), p22 = d3(n.b, d.b);
+  const std::int64_t s_uu = 2 * (d3(n.a, n.a) + m(q1, r1) + d3(d.a, d.a));
+  const std::int64_t s_uv = 2 * d3(n.a, n.b) + m(q1, r2) + m(q2, r1) + 2 * d3(d.a, d.b);
+  const std::int64_t s_vv = 2 * (d3(n.b, n.b) + m(q2, r2) + d3(d.b, d.b));
+  const std::int64_t f_uu = 2 * p11 - m(p1, su) + m(p0, 3 * m(su, su) / 4 - s_uu / 2);
+  const std::int64_t f_uv = p12 - (m(p1, sv) + m(p2, su)) / 2 + m(p0, 3 * m(su, sv) / 4 - s_uv / 2);
+  const std::int64_t f_vv = 2 * p22 - m(p2, sv) + m(p0, 3 * m(sv, sv) / 4 - s_vv / 2);
+  t.c11 = clamp_to(f_uu / 2, kMaxQuadratic, saturated);
+  t.c12 = clamp_to(f_uv, kMaxQuadratic, saturated);
+  t.c22 = clamp_to(f_vv / 2, kMaxQuadratic, saturated);
+  return t;
+}
+
 // The exponent table for the material's n (Bishop & Weimer: 1 KiB up to n = 20, 8 KiB up to
 // n = 164), filled when the material changes; above 164 there is none (power() per pixel).
 void BishopWeimerMethod::refresh_material(const ShadeContext& ctx) {
@@ -153,7 +214,31 @@ void BishopWeimerMethod::refresh_material(const ShadeContext& ctx) {
   }
 }
 
-bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
+bool BishopWeimerMethod::steep(const VectorField& f) {
+  bool steep = false;
+  for (int c = 0; c < 3; ++c)
+    steep =
+        steep || mag(f.a[c]) > (std::uint64_t{1} << kF) || mag(f.b[c]) > (std::uint64_t{1} << kF);
+  return steep;
+}
+
+BishopWeimerMethod::VectorField BishopWeimerMethod::screen_field(const Triangle& tri,
+                                                                 const Lambdas& lam,
+                                                                 const std::int64_t v[3][3]) {
+  VectorField field{};
+  ScreenPlane plane;
+  for (int c = 0; c < 3; ++c) {
+    plane.setup(tri, v[0][c], v[1][c], v[2][c]);
+    constexpr int kStep = ScreenPlane::kStepFrac + 30 - kF;  // Q.46 -> Q.kF
+    field.c[c] = plane.at(lam) * kQ30ToCoeff;
+    field.a[c] = fx::round_shift_right(plane.step_x(), kStep);
+    field.b[c] = fx::round_shift_right(plane.step_y(tri), kStep);
+  }
+  return field;
+}
+
+void BishopWeimerMethod::begin(const Triangle& tri, const ShadeContext& ctx, VectorField& normal,
+                               bool& steep_normal, Lambdas& lam) {
   counters_ = ctx.counters;
   refresh_material(ctx);
   const MaterialCmd& m = ctx.material;
@@ -164,33 +249,19 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   xr_ = (sx < 0 ? sx - 47 : sx) / 48;  // floor(centroid / 16 px)
   yr_ = (sy < 0 ? sy - 47 : sy) / 48;
   // The screen-linear normal there, and its steps per pixel (Q.kF).
-  ScreenPlane plane;
-  NormalField field{};
-  const Lambdas lam = lambdas_at(tri, 16 * xr_ + 8, 16 * yr_ + 8);
-  for (int c = 0; c < 3; ++c) {
-    const auto comp = [c](const ShadeVertex& v) {
-      return std::int64_t{c == 0 ? v.normal.x.raw()
-                                 : (c == 1 ? v.normal.y.raw() : v.normal.z.raw())};
-    };
-    plane.setup(tri, comp(tri.v[0]), comp(tri.v[1]), comp(tri.v[2]));
-    constexpr int kStep = ScreenPlane::kStepFrac + 30 - kF;  // Q.46 -> Q.kF
-    field.c[c] = plane.at(lam) * kQ30ToCoeff;
-    field.a[c] = fx::round_shift_right(plane.step_x(), kStep);
-    field.b[c] = fx::round_shift_right(plane.step_y(tri), kStep);
+  lam = lambdas_at(tri, 16 * xr_ + 8, 16 * yr_ + 8);
+  std::int64_t n[3][3];
+  for (int i = 0; i < 3; ++i) {
+    n[i][0] = tri.v[i].normal.x.raw();
+    n[i][1] = tri.v[i].normal.y.raw();
+    n[i][2] = tri.v[i].normal.z.raw();
   }
+  normal = screen_field(tri, lam, n);
   // A triangle whose normal turns by more than a unit per pixel is less than a pixel across in
   // that direction: its second-order terms would extrapolate the steepest curvature over its
   // pixels (and their products leave 64 bits). It is shaded by the first-order expansion.
-  bool steep = false;
-  for (int c = 0; c < 3; ++c)
-    steep = steep || mag(field.a[c]) > (std::uint64_t{1} << kF) ||
-            mag(field.b[c]) > (std::uint64_t{1} << kF);
+  steep_normal = steep(normal);
 
-  // The lights' constant vectors, at the eye-space centroid (Duff's, methods.hpp).
-  const Vec3q16 p = eye_centroid(tri);
-  const Vec3u eye = eye_direction(ctx, p);
-  if (ctx.eye == EyeMode::kFinite) ++counters_->normalizations;
-  bool saturated = false;
   for (int c = 0; c < 3; ++c) {
     const std::int64_t a = fx::mul_sat<q1_30>(m.ka, m.color[c]).raw();
     ambient_[c] = a * (std::int64_t{1} << (kS - 30));
@@ -199,52 +270,42 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   }
   lights_ = 0;
   terminators_ = 0;
-  for (const LightState& l : ctx.lights) {
-    if (l.type == LightType::kOff) continue;
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
-    const Vec3u lv = light_direction(l, p);
-    const Vec3u h = halfway(lv, eye);
-    counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;
-    // Each term (diffuse, specular) left out is counted, as in the Kuijk-Blake methods.
-    const bool diffuse_away = faces_away(tri, lv), specular_away = faces_away(tri, h);
-    counters_->lights_skipped_triangle += (diffuse_away ? 1u : 0u) + (specular_away ? 1u : 0u);
-    if (!diffuse_away) {  // weighted by kd O_c Il_c (Q.30 × Q.16)
-      const std::int64_t d[3] = {lv.x.raw() * kQ30ToCoeff, lv.y.raw() * kQ30ToCoeff,
-                                 lv.z.raw() * kQ30ToCoeff};
-      const Taylor t = expand(field, d, !steep, saturated);
-      std::int64_t w[3];
-      for (int c = 0; c < 3; ++c)
-        w[c] = fx::mul_shift_right(fx::mul_sat<q1_30>(m.kd, m.color[c]).raw(), l.color[c].raw(),
-                                   16);  // Q.30
-      const bool whole = faces_towards(tri, lv);
-      if (!whole) {  // its own polynomial, clamped at zero per pixel
-        terminator_[terminators_] = t;
-        for (int c = 0; c < 3; ++c) terminator_weight_[terminators_][c] = w[c];
-        ++terminators_;
-      }
-      for (int c = 0; c < 3 && whole; ++c) {  // into the channels' sum
-        Taylor& s = diffuse_[c];
-        s.c0 += fx::mul_shift_right(t.c0, w[c], 30);
-        s.c1 += fx::mul_shift_right(t.c1, w[c], 30);
-        s.c2 += fx::mul_shift_right(t.c2, w[c], 30);
-        s.c11 += fx::mul_shift_right(t.c11, w[c], 30);
-        s.c12 += fx::mul_shift_right(t.c12, w[c], 30);
-        s.c22 += fx::mul_shift_right(t.c22, w[c], 30);
-      }
-    }
-    if (!specular_away && m.ks.raw() != 0) {
-      const std::int64_t d[3] = {h.x.raw() * kQ30ToCoeff, h.y.raw() * kQ30ToCoeff,
-                                 h.z.raw() * kQ30ToCoeff};
-      specular_[lights_] = expand(field, d, !steep, saturated);
-      for (int c = 0; c < 3; ++c) {
-        // ks Il_c per unit of what the pixel loop multiplies it by: a table entry (255 for
-        // 1.0) in Q.36, or a power in Q.24 with the weight in Q.30.
-        const std::int64_t k36 = fx::mul_shift_right(m.ks.raw(), l.color[c].raw(), 10);
-        spec_weight_[lights_][c] = table_size_ != 0 ? (k36 + 127) / 255 : k36 >> 6;
-      }
-      ++lights_;
-    }
+}
+
+void BishopWeimerMethod::add_diffuse(const Taylor& t, const LightState& l, const MaterialCmd& m,
+                                     bool whole) {
+  std::int64_t w[3];  // kd O_c Il_c, Q.30 × Q.16
+  for (int c = 0; c < 3; ++c)
+    w[c] = fx::mul_shift_right(fx::mul_sat<q1_30>(m.kd, m.color[c]).raw(), l.color[c].raw(), 16);
+  if (!whole) {  // its own polynomial, clamped at zero per pixel
+    terminator_[terminators_] = t;
+    for (int c = 0; c < 3; ++c) terminator_weight_[terminators_][c] = w[c];
+    ++terminators_;
+    return;
   }
+  for (int c = 0; c < 3; ++c) {  // into the channels' sum
+    Taylor& s = diffuse_[c];
+    s.c0 += fx::mul_shift_right(t.c0, w[c], 30);
+    s.c1 += fx::mul_shift_right(t.c1, w[c], 30);
+    s.c2 += fx::mul_shift_right(t.c2, w[c], 30);
+    s.c11 += fx::mul_shift_right(t.c11, w[c], 30);
+    s.c12 += fx::mul_shift_right(t.c12, w[c], 30);
+    s.c22 += fx::mul_shift_right(t.c22, w[c], 30);
+  }
+}
+
+void BishopWeimerMethod::add_specular(const Taylor& t, const LightState& l, const MaterialCmd& m) {
+  specular_[lights_] = t;
+  for (int c = 0; c < 3; ++c) {
+    // ks Il_c per unit of what the pixel loop multiplies it by: a table entry (255 for 1.0) in
+    // Q.36, or a power in Q.24 with the weight in Q.30.
+    const std::int64_t k36 = fx::mul_shift_right(m.ks.raw(), l.color[c].raw(), 10);
+    spec_weight_[lights_][c] = table_size_ != 0 ? (k36 + 127) / 255 : k36 >> 6;
+  }
+  ++lights_;
+}
+
+void BishopWeimerMethod::finish(bool saturated) {
   // Sixteen lights of intensity up to 16 add into a channel's coefficients: keep the sums in
   // the coefficients' range.
   for (Taylor& s : diffuse_) {
@@ -256,6 +317,41 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     s.c22 = clamp_to(s.c22, kMaxQuadratic, saturated);
   }
   if (saturated) ++counters_->saturations;
+}
+
+bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
+  VectorField field;
+  bool steep_normal = false;
+  Lambdas lam;
+  begin(tri, ctx, field, steep_normal, lam);
+  const MaterialCmd& m = ctx.material;
+
+  // The lights' constant vectors, at the eye-space centroid (Duff's, methods.hpp).
+  const Vec3q16 p = eye_centroid(tri);
+  const Vec3u eye = eye_direction(ctx, p);
+  if (ctx.eye == EyeMode::kFinite) ++counters_->normalizations;
+  bool saturated = false;
+  for (const LightState& l : ctx.lights) {
+    if (l.type == LightType::kOff) continue;
+    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    const Vec3u lv = light_direction(l, p);
+    const Vec3u h = halfway(lv, eye);
+    counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;
+    // Each term (diffuse, specular) left out is counted, as in the Kuijk-Blake methods.
+    const bool diffuse_away = faces_away(tri, lv), specular_away = faces_away(tri, h);
+    counters_->lights_skipped_triangle += (diffuse_away ? 1u : 0u) + (specular_away ? 1u : 0u);
+    if (!diffuse_away) {
+      const std::int64_t d[3] = {lv.x.raw() * kQ30ToCoeff, lv.y.raw() * kQ30ToCoeff,
+                                 lv.z.raw() * kQ30ToCoeff};
+      add_diffuse(expand(field, d, !steep_normal, saturated), l, m, faces_towards(tri, lv));
+    }
+    if (!specular_away && m.ks.raw() != 0) {
+      const std::int64_t d[3] = {h.x.raw() * kQ30ToCoeff, h.y.raw() * kQ30ToCoeff,
+                                 h.z.raw() * kQ30ToCoeff};
+      add_specular(expand(field, d, !steep_normal, saturated), l, m);
+    }
+  }
+  finish(saturated);
   return true;
 }
 

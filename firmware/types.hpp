@@ -51,6 +51,8 @@ enum class Method : std::uint32_t {
   kKuijkBlakeAdaptive = 13,        // per-triangle choice under an error budget (kb_adaptive.hpp)
   kKuijkBlakeAdaptiveNoSkip = 14,  // the same without skipping (verification: identical image)
   kKuijkBlakeAdaptiveExact = 15,   // its exact evaluation at every pixel (the budget's reference)
+  kBishopWeimerFinite =
+      16,  // Bishop-Weimer's finite-eye extension (shade_bishop_weimer_finite.cpp)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

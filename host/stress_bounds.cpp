@@ -52,6 +52,12 @@ constexpr Known kKnown[] = {
      "screen-linear normal, V and H at the centroid under a wide-angle perspective"},
     {"near-plane", " bishop-weimer ",
      "screen-linear interpolation under perspective (clipped floor)"},
+    {"near-light", " bishop-weimer-finite ",
+     "a near light's spot is narrower than a quadratic about the triangle's centre can follow"},
+    {"eye-near", " bishop-weimer-finite ",
+     "screen-linear normal and H under a wide-angle perspective"},
+    {"near-plane", " bishop-weimer-finite ",
+     "screen-linear interpolation under perspective (clipped floor)"},
     {"scale",
      " flat gouraud phong duff kb kb-noskip kb-decomposition kb-exact kb-adaptive "
      "kb-adaptive-noskip kb-adaptive-exact ",
@@ -65,7 +71,7 @@ constexpr Known kKnown[] = {
     {"terminator-exact", " kb kb-noskip kb-decomposition ",
      "diffuse is f(n = 1), not max(0, cos): nonzero at N·L = 0 (KUIJK-BLAKE.md)"},
     // Bishop-Weimer on every other case: its model.
-    {"", " bishop-weimer ",
+    {"", " bishop-weimer bishop-weimer-finite ",
      "second-order expansion about the centre: strongly curved or thin triangles (normals far "
      "apart, slivers, edge-on near the silhouette) are extrapolated poorly at their far ends"},
     // The two oldest methods on every other case: their model, whatever the numerics.
@@ -529,6 +535,46 @@ const std::vector<Bound>& bounds() {
       {"ab-min", "bishop-weimer", 3, 0.069, 0},
       {"ab-max", "bishop-weimer", 57, 0.161, 0},
       {"ab-wide", "bishop-weimer", 13, 0.159, 0},
+      // Bishop-Weimer's finite-eye extension: measured 2026-12-03 (`tinyphong stress --methods
+      // bishop-weimer-finite --pin-bounds FILE`). The saturations: a point light nearer a
+      // triangle's centre than a quarter of its vertices' distance (shorter L there is taken
+      // as a quarter long, counted; methods.hpp).
+      {"exponent-n1", "bishop-weimer-finite", 77, 0.143, 0},
+      {"exponent-n3", "bishop-weimer-finite", 4, 0.146, 0},
+      {"exponent-n10", "bishop-weimer-finite", 3, 0.146, 0},
+      {"exponent-n32", "bishop-weimer-finite", 3, 0.110, 0},
+      {"exponent-n100", "bishop-weimer-finite", 3, 0.084, 0},
+      {"exponent-n316", "bishop-weimer-finite", 5, 0.085, 0},
+      {"exponent-n1000", "bishop-weimer-finite", 22, 0.067, 0},
+      {"exponent-n3162", "bishop-weimer-finite", 4, 0.073, 0},
+      {"exponent-n10000", "bishop-weimer-finite", 10, 0.070, 0},
+      {"span-1024", "bishop-weimer-finite", 120, 11.033, 0},
+      {"span-4096", "bishop-weimer-finite", 121, 11.105, 0},
+      {"span-guard-band", "bishop-weimer-finite", 40, 13.804, 0},
+      {"grazing-1deg", "bishop-weimer-finite", 3, 0.340, 0},
+      {"grazing-0.1deg", "bishop-weimer-finite", 3, 0.279, 0},
+      {"terminator-exact", "bishop-weimer-finite", 3, 0.400, 0},
+      {"terminator-vertices", "bishop-weimer-finite", 3, 0.288, 0},
+      {"near-light-1pct", "bishop-weimer-finite", 145, 8.902, 1},
+      {"near-light-2pct", "bishop-weimer-finite", 122, 7.950, 1},
+      {"near-light-5pct", "bishop-weimer-finite", 137, 6.997, 1},
+      {"light-inside-centre", "bishop-weimer-finite", 3, 0.401, 1},
+      {"light-inside-offset", "bishop-weimer-finite", 3, 0.400, 1},
+      {"eye-near", "bishop-weimer-finite", 88, 9.950, 0},
+      {"sliver-fan", "bishop-weimer-finite", 47, 1.600, 0},
+      {"sliver-needles", "bishop-weimer-finite", 86, 7.277, 0},
+      {"sliver-degenerate", "bishop-weimer-finite", 10, 0.683, 0},
+      {"near-plane", "bishop-weimer-finite", 67, 13.281, 0},
+      {"scale-large", "bishop-weimer-finite", 20, 0.868, 0},
+      {"scale-huge", "bishop-weimer-finite", 50, 4.956, 0},
+      {"scale-small", "bishop-weimer-finite", 13, 0.173, 0},
+      {"scale-tiny", "bishop-weimer-finite", 22, 0.550, 0},
+      {"lights-16", "bishop-weimer-finite", 3, 0.082, 0},
+      {"normals-near-minus-o", "bishop-weimer-finite", 3, 0.051, 0},
+      {"antipodal-normals", "bishop-weimer-finite", 154, 26.755, 0},
+      {"ab-min", "bishop-weimer-finite", 3, 0.069, 0},
+      {"ab-max", "bishop-weimer-finite", 57, 0.161, 0},
+      {"ab-wide", "bishop-weimer-finite", 13, 0.159, 0},
   };
   return table;
 }

@@ -199,6 +199,7 @@ const std::map<std::string_view, Sites> kSites = {
     {"phong", Sites::kPixel},
     {"duff", Sites::kPixelLightsSkipped},
     {"bishop-weimer", Sites::kPolynomials},
+    {"bishop-weimer-finite", Sites::kPolynomials},
     {"kb", Sites::kSpanTerms},
     {"kb-noskip", Sites::kSpanTermsAll},
     {"kb-decomposition", Sites::kSpanTerms},
@@ -287,6 +288,28 @@ TEST(Registry, VerificationVariantsRenderTheirMethodsImage) {
     }
   }
   EXPECT_EQ(variants, 2);  // kb-noskip, kb-adaptive-noskip
+}
+
+// Bishop-Weimer's finite-eye extension changes only what varies: with the eye at infinity and
+// every light directional, H and L are the same at the three vertices and its image is
+// bishop-weimer's, byte for byte, on every orthographic paper scene (each point light replaced
+// by a directional one from the same side); under perspective (the teapot) it is not.
+TEST(Registry, BishopWeimerFiniteIsBishopWeimerWithEverythingAtInfinity) {
+  int compared = 0;
+  for (const std::string& name : paper_scenes()) {
+    SCOPED_TRACE(name);
+    Scene s = paper_scene(name);
+    if (s.camera.kind != CameraKind::Orthographic) {
+      EXPECT_FALSE(draw(s, "bishop-weimer-finite").rgb == draw(s, "bishop-weimer").rgb);
+      continue;
+    }
+    // The point lights as they are: the extension must show.
+    EXPECT_FALSE(draw(s, "bishop-weimer-finite").rgb == draw(s, "bishop-weimer").rgb);
+    for (Light& l : s.lights) l.kind = LightKind::Directional;  // toward the old position
+    EXPECT_TRUE(draw(s, "bishop-weimer-finite").rgb == draw(s, "bishop-weimer").rgb);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 20);  // the teapot's four are perspective
 }
 
 // The host's list is the registry's, and every row's name parses back to its id.

@@ -1,7 +1,9 @@
 // Bishop & Weimer's Taylor coefficients (firmware/shade_bishop_weimer.cpp) against a numerical
 // expansion of the exact function they approximate, f(u, v) = D·N(u, v) / |N(u, v)| with the
-// screen-linear normal N(u, v) = C + A u + B v: the expansion is exact at the centre, and its
-// six coefficients are f's derivatives there (central differences in double).
+// screen-linear normal N(u, v) = C + A u + B v, and of their finite-eye form
+// f(u, v) = N(u, v)·D(u, v) / (|N(u, v)| |D(u, v)|) with D screen-linear too: the expansion is
+// exact at the centre, and its six coefficients are f's derivatives there (central differences
+// in double).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,7 +51,7 @@ TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
     const double step = 0.05 * (i % 10 + 1) / 10.0;
     Case k{random_unit() * (0.8 + 0.2 * (unit(rng) + 1) / 2), random_unit() * step,
            random_unit() * step, random_unit()};
-    BishopWeimerMethod::NormalField field{};
+    BishopWeimerMethod::VectorField field{};
     for (int c = 0; c < 3; ++c) {
       field.c[c] = fixed(k.c[c]);
       field.a[c] = fixed(k.a[c]);
@@ -85,10 +87,116 @@ TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
   for (int j = 1; j < 6; ++j) EXPECT_LT(worst[j], 1e-5) << j;
 }
 
+// The finite-eye expansion (expand_pair): both vectors vary. D's centre has any length (the
+// unnormalised L of a point light; H interpolated between unit vectors is a little short) and
+// turns by up to ~0.05 rad per pixel like N.
+struct PairCase {
+  dvec3 nc, na, nb, dc, da, db;
+};
+
+double f_pair(const PairCase& k, double u, double v) {
+  const dvec3 n = k.nc + u * k.na + v * k.nb, d = k.dc + u * k.da + v * k.db;
+  return glm::dot(n, d) / (glm::length(n) * glm::length(d));
+}
+
+BishopWeimerMethod::VectorField field_of(const dvec3& c, const dvec3& a, const dvec3& b) {
+  BishopWeimerMethod::VectorField f{};
+  for (int k = 0; k < 3; ++k) {
+    f.c[k] = fixed(c[k]);
+    f.a[k] = fixed(a[k]);
+    f.b[k] = fixed(b[k]);
+  }
+  return f;
+}
+
+TEST(BishopWeimerFinite, CoefficientsMatchANumericalTaylorExpansion) {
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_unit = [&] {
+    dvec3 v;
+    do v = dvec3(unit(rng), unit(rng), unit(rng));
+    while (glm::length(v) < 0.2 || glm::length(v) > 1.0);
+    return glm::normalize(v);
+  };
+  double worst[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < 2000; ++i) {
+    const double step = 0.05 * (i % 10 + 1) / 10.0;
+    const double length = 0.5 + 0.75 * (unit(rng) + 1);  // D's centre: 0.5 .. 2
+    const PairCase k{random_unit() * (0.8 + 0.2 * (unit(rng) + 1) / 2),
+                     random_unit() * step,
+                     random_unit() * step,
+                     random_unit() * length,
+                     random_unit() * step * length,
+                     random_unit() * step * length};
+    bool saturated = false;
+    const BishopWeimerMethod::Taylor t = BishopWeimerMethod::expand_pair(
+        field_of(k.nc, k.na, k.nb), field_of(k.dc, k.da, k.db), true, saturated);
+    ASSERT_FALSE(saturated);
+    // g smaller than above: with both vectors turning, f's fourth derivatives are larger, and
+    // at g = 2e-2 the differences' own truncation error reached 1.2e-5 of c12's scale (it fell
+    // 16-fold at g = 5e-3: truncation, g²).
+    const double h = 1e-3, g = 5e-3;
+    const auto f = [&k](double u, double v) { return f_pair(k, u, v); };
+    const double f00 = f(0, 0);
+    const double fu = (f(h, 0) - f(-h, 0)) / (2 * h);
+    const double fv = (f(0, h) - f(0, -h)) / (2 * h);
+    const double fuu = (f(g, 0) - 2 * f00 + f(-g, 0)) / (g * g);
+    const double fvv = (f(0, g) - 2 * f00 + f(0, -g)) / (g * g);
+    const double fuv = (f(g, g) - f(g, -g) - f(-g, g) + f(-g, -g)) / (4 * g * g);
+    const double want[6] = {f00, fu, fv, fuu / 2, fuv, fvv / 2};
+    const double got[6] = {t.c0 / kUnit,  t.c1 / kUnit,  t.c2 / kUnit,
+                           t.c11 / kUnit, t.c12 / kUnit, t.c22 / kUnit};
+    const double scale[6] = {1, step, step, step * step, step * step, step * step};
+    for (int j = 0; j < 6; ++j)
+      worst[j] = std::max(worst[j], std::abs(got[j] - want[j]) / scale[j]);
+  }
+  std::printf("worst error / scale: c0 %.3g, c1 %.3g, c2 %.3g, c11 %.3g, c12 %.3g, c22 %.3g\n",
+              worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]);
+  EXPECT_LT(worst[0], std::ldexp(1.0, -30));
+  // Measured 2026-12-03: 4.4e-9 (first order) and 0.5e-6 / 0.7e-6 (second order) of their
+  // scale; pinned at 1e-5 as the single expansion's.
+  for (int j = 1; j < 6; ++j) EXPECT_LT(worst[j], 1e-5) << j;
+}
+
+// With D the same everywhere the pair expansion is the single one (to rounding: it scales the
+// fields to unit length first, the single one divides by |N|).
+TEST(BishopWeimerFinite, AConstantVectorGivesTheSingleExpansion) {
+  const dvec3 c = glm::normalize(dvec3(0.2, 0.3, 0.9)), a(0.01, -0.02, 0.005),
+              b(-0.015, 0.01, 0.02);
+  const dvec3 dir = glm::normalize(dvec3(0.5, 0.5, 0.7));
+  const std::int64_t d[3] = {fixed(dir.x), fixed(dir.y), fixed(dir.z)};
+  bool saturated = false;
+  const auto single = BishopWeimerMethod::expand(field_of(c, a, b), d, true, saturated);
+  // D of length 1.7: the quotient does not see it.
+  const auto pair = BishopWeimerMethod::expand_pair(
+      field_of(c, a, b), field_of(1.7 * dir, dvec3(0), dvec3(0)), true, saturated);
+  EXPECT_FALSE(saturated);
+  const std::int64_t one[6] = {single.c0, single.c1, single.c2, single.c11, single.c12, single.c22};
+  const std::int64_t two[6] = {pair.c0, pair.c1, pair.c2, pair.c11, pair.c12, pair.c22};
+  for (int j = 0; j < 6; ++j)
+    EXPECT_NEAR(static_cast<double>(two[j]), static_cast<double>(one[j]), 1024.0) << j;  // 2^-30
+}
+
+// A D that turns by more than a unit per pixel (a point light within a pixel of the triangle)
+// gets the first-order expansion only, like a steep normal.
+TEST(BishopWeimerFinite, ASteepVectorGivesTheFirstOrderOnly) {
+  const dvec3 c = glm::normalize(dvec3(0.2, 0.3, 0.9)), a(0.01, -0.02, 0.005),
+              b(-0.015, 0.01, 0.02);
+  bool saturated = false;
+  const auto t = BishopWeimerMethod::expand_pair(
+      field_of(c, a, b), field_of(dvec3(0, 0, 0.5), dvec3(0.8, 0, 0), dvec3(0, 0.1, 0)), true,
+      saturated);
+  EXPECT_EQ(t.c11, 0);
+  EXPECT_EQ(t.c12, 0);
+  EXPECT_EQ(t.c22, 0);
+  EXPECT_NE(t.c1, 0);
+  EXPECT_FALSE(saturated);
+}
+
 // The seed's printed T5 numerator "3ig² − 4cdi − 4agi" does not scale with the numerator's
 // (a, b, c): doubling D must double every coefficient, and does.
 TEST(BishopWeimer, CoefficientsScaleWithTheNumerator) {
-  BishopWeimerMethod::NormalField field{};
+  BishopWeimerMethod::VectorField field{};
   const dvec3 c = glm::normalize(dvec3(0.2, 0.3, 0.9)), a(0.01, -0.02, 0.005),
               b(-0.015, 0.01, 0.02);
   for (int k = 0; k < 3; ++k) {

@@ -71,6 +71,14 @@ constexpr Measured kMeasured[] = {
     {"dodecahedron-30", "bishop-weimer", 0.991897, 2.066, 50},
     {"triangle", "bishop-weimer", 0.881434, 30.234, 78},
     {"teapot", "bishop-weimer", 0.998664, 0.341, 100},
+    // Bishop-Weimer's finite-eye extension (2026-12-03, as Duff's): H, and a point light's L,
+    // vary over each triangle; the triangle's near point light shows it (0.88 -> 0.98).
+    {"sphere-32", "bishop-weimer-finite", 0.996889, 0.793, 27},
+    {"sphere-40", "bishop-weimer-finite", 0.991016, 2.291, 88},
+    {"sphere-512", "bishop-weimer-finite", 0.999361, 0.163, 2},
+    {"dodecahedron-30", "bishop-weimer-finite", 0.995077, 1.255, 36},
+    {"triangle", "bishop-weimer-finite", 0.981739, 4.657, 47},
+    {"teapot", "bishop-weimer-finite", 0.999292, 0.181, 100},
 };
 
 struct Rendered {
@@ -140,6 +148,7 @@ constexpr Measured kHighestExponent[] = {
     {"triangle", "duff", 0.943386, 14.437, 102},  // 2026-12-03, as above
     // Above 164 Bishop-Weimer takes the power by repeated squaring (its 8 KiB table's range).
     {"triangle", "bishop-weimer", 0.943895, 14.307, 103},
+    {"triangle", "bishop-weimer-finite", 0.984508, 3.950, 101},  // 2026-12-03
     {"sphere-512", "flat", 0.991346, 2.207, 99},
     {"sphere-512", "gouraud", 0.997280, 0.694, 100},
     {"sphere-512", "phong", 0.999997, 0.001, 1},
@@ -152,6 +161,7 @@ constexpr Measured kHighestExponent[] = {
     {"sphere-512", "kb-adaptive-exact", 0.999997, 0.001, 1},
     {"sphere-512", "duff", 0.998594, 0.359, 53},  // 2026-12-03
     {"sphere-512", "bishop-weimer", 0.998614, 0.353, 51},
+    {"sphere-512", "bishop-weimer-finite", 0.999578, 0.108, 13},
 };
 
 class HighestExponent : public ::testing::TestWithParam<Measured> {};
