@@ -28,12 +28,15 @@ Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n) 
     if (l.type == LightType::kOff) continue;
     const Vec3u lv = light_direction(l, p);
     if (l.type == LightType::kPoint) ++cnt.normalizations;
-    const Vec3u h = halfway(lv, v);
-    ++cnt.normalizations;
     const q1_30 ndl = clamp_positive(fx::dot<q1_30>(n, lv));
-    const q1_30 ndh = clamp_positive(fx::dot<q1_30>(n, h));
-    const q1_30 spec = mul(m.ks, power(ndh, m.n));
-    ++cnt.specular_evaluations;
+    q1_30 spec = q1_30::zero();
+    if (m.ks.raw() != 0) {  // a material without specular evaluates none (Brown's vertices)
+      const Vec3u h = halfway(lv, v);
+      ++cnt.normalizations;
+      const q1_30 ndh = clamp_positive(fx::dot<q1_30>(n, h));
+      spec = mul(m.ks, power(ndh, m.n));
+      ++cnt.specular_evaluations;
+    }
     for (int c = 0; c < 3; ++c) {
       // kd O_c (N.L) + ks (N.H)^n <= 2 (q1_30 saturates at 2 - 2^-30), times Il_c <= 16.
       const std::int64_t term = std::int64_t{mul(diffuse_colour[c], ndl).raw()} + spec.raw();

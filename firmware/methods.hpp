@@ -221,4 +221,67 @@ class BishopWeimerFiniteMethod final : public BishopWeimerMethod {
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
 };
 
+// 7. Brown's Bézier-triangle highlights (shade_brown.cpp; Brown 1999): the diffuse and ambient
+//    colour as Gouraud's (lit at the vertices without the specular term, interpolated in screen
+//    space); each light's N·H as a quadratic Bézier triangle through six cosines — the three
+//    vertex normals' and the three renormalised edge-midpoint normals', with H at each of the six
+//    points (one H for a directional light seen from an eye at infinity) — evaluated per pixel
+//    from perspective-correct barycentrics (Brown eq. 18 with eq. 9), and the power replaced by
+//    the smoothstep s = t²(3 − 2t) of t = (c − c_lo) / (c_hi − c_lo), whose range is fitted to n
+//    (lower_cosine). Brown's blend g = s g_s + (1 − s) g_da with the specular colour
+//    g_s = g_da + ks Il is the additive model every other method renders: g = g_da + s ks Il.
+//    Convex-hull culling: a light whose six control points all lie below c_lo cannot light any
+//    pixel of the triangle and is left out of it (counted in lights_skipped_triangle; the
+//    highlights evaluated are specular_evaluations).
+class BrownMethod final : public ShadingMethod {
+ public:
+  // Its diffuse-and-ambient vertex colours, once per draw (GouraudMethod's cache).
+  static constexpr bool kLightsVertices = true;
+  // cull: the convex-hull test on (brown), or off (brown-noskip, which must give the same image).
+  explicit BrownMethod(bool cull) : cull_(cull) {}
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+  // The control points of a quadratic Bézier triangle through cosines c at its vertices
+  // (c[0..2], vertex 0, 1, 2) and edge midpoints (c[3..5]: edges 0-1, 1-2, 2-0), Q.30: the
+  // vertex points are the cosines, the edge points by Brown's eq. 12, C011 = (4 c011 − C020 −
+  // C002) / 2, kept doubled (d011 = 2 C011, as eq. 18 uses them) so that they are exact.
+  struct Bezier {
+    std::int64_t c200, c020, c002;  // Q.30
+    std::int64_t d110, d011, d101;  // 2 C110, 2 C011, 2 C101, Q.30
+  };
+  static Bezier control_points(const std::int64_t c[6]);
+  // The Bézier triangle at barycentrics b (Q.30, each in [0, 1]; Brown eq. 18), Q.30, rounded
+  // once (the products are summed exactly): at the six points it returns the six cosines.
+  static std::int64_t evaluate(const Bezier& z, const std::int64_t b[3]);
+  // The smoothstep's range for exponent n, Q.30 (c_hi a little above 1): shade_brown.cpp and
+  // docs/DECISIONS.md, "Brown".
+  static std::int64_t lower_cosine(std::uint32_t n);
+  static std::int64_t upper_cosine(std::uint32_t n);
+
+ private:
+  struct Highlight {
+    Bezier bezier;
+    std::int64_t weight[3];  // ks Il_c, Q.30
+  };
+  void refresh_material(const ShadeContext& ctx);
+
+  bool cull_ = true;
+  GouraudMethod gouraud_;     // the diffuse and ambient colour
+  ShadeContext diffuse_ctx_;  // the shading state with ks = 0, for gouraud_
+  std::uint64_t revision_ = 0;
+  const ShadeContext* ctx_ = nullptr;
+  std::int64_t c_lo_ = 0;       // Q.30
+  std::int64_t inv_range_ = 0;  // 1 / (1 − c_lo), Q.40
+  Counters* counters_ = nullptr;
+  const Triangle* tri_ = nullptr;
+  // Perspective-correct barycentrics: b_i = m_i / Σ m_j with m_i = λ_i w_min / w_i, λ the screen
+  // barycentrics; m_i and its step per pixel in x, Q.40. affine_: the three w equal, b = λ.
+  bool affine_ = true;
+  std::int64_t rho_[3] = {0, 0, 0};  // w_min / w_i, Q.30
+  std::int64_t dm_[3] = {0, 0, 0};   // Q.40
+  int lights_ = 0;                   // highlights on this triangle
+  Highlight highlight_[kMaxLights];
+};
+
 }  // namespace tp::fw

@@ -120,6 +120,20 @@ inline constexpr MethodInfo kMethodTable[] = {
      "to second order about the centre; otherwise bishop-weimer (same pixel loop)",
      {kApprox, kApprox, kApprox},
      slot_of<BishopWeimerFiniteMethod>()},
+    {Method::kBrown,
+     "brown",
+     "Brown's Bézier-triangle highlights: diffuse and ambient as Gouraud; per light, N·H as a "
+     "quadratic Bézier triangle through six cosines (vertices and renormalised edge midpoints, "
+     "H at each), perspective-correct barycentrics, the power replaced by a smoothstep fitted "
+     "to n; lights culled per triangle by the convex hull",
+     {kApprox, kApprox, kExact},
+     slot_of<BrownMethod, true>()},
+    {Method::kBrownNoSkip,
+     "brown-noskip",
+     "brown without its convex-hull culling (same image)",
+     {kApprox, kApprox, kExact},
+     slot_of<BrownMethod, false>(),
+     Method::kBrown},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

@@ -42,7 +42,7 @@ enum class Method : std::uint32_t {
   kDuff = 4,              // Duff's forward-differenced Phong (firmware/shade_duff.cpp)
   kBishopWeimer = 5,      // Bishop-Weimer fast Phong (firmware/shade_bishop_weimer.cpp)
   kKuijkBlake = 6,        // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
-  kBrown = 7,             // reserved
+  kBrown = 7,             // Brown's Bézier-triangle highlights (firmware/shade_brown.cpp)
   kVlasic = 8,            // reserved
   kKuijkBlakeNoSkip = 9,  // the same with every skip disabled (verification: identical image)
   // 10: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
@@ -51,8 +51,9 @@ enum class Method : std::uint32_t {
   kKuijkBlakeAdaptive = 13,        // per-triangle choice under an error budget (kb_adaptive.hpp)
   kKuijkBlakeAdaptiveNoSkip = 14,  // the same without skipping (verification: identical image)
   kKuijkBlakeAdaptiveExact = 15,   // its exact evaluation at every pixel (the budget's reference)
-  kBishopWeimerFinite =
-      16,  // Bishop-Weimer's finite-eye extension (shade_bishop_weimer_finite.cpp)
+  // Bishop-Weimer's finite-eye extension (firmware/shade_bishop_weimer_finite.cpp).
+  kBishopWeimerFinite = 16,
+  kBrownNoSkip = 17,  // brown without its convex-hull culling (verification: identical image)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

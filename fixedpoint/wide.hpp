@@ -124,8 +124,9 @@ namespace tp::fx {
 // Raw-integer products wider than 64 bits, public for code between Q types:
 //   mul_shift_right(a, b, s)  round(a·b / 2^s), ties away from zero, from the exact 128-bit
 //                             product; the caller keeps the result below 2^63.
-//   Sum128                    an exact signed sum of 64×64-bit products (its sign only: what
-//                             orientation tests need), without __int128 (Cortex-M has none).
+//   Sum128                    an exact signed sum of 64×64-bit products, without __int128
+//                             (Cortex-M has none): its sign (what orientation tests need), or
+//                             the sum rounded once to 64 bits (a polynomial evaluated exactly).
 constexpr std::int64_t mul_shift_right(std::int64_t a, std::int64_t b, int s) {
   const bool negative = (a < 0) != (b < 0);
   bool over = false;
@@ -151,6 +152,19 @@ struct Sum128 {
   constexpr int sign() const {
     if ((hi >> 63) != 0) return -1;
     return (hi | lo) != 0 ? 1 : 0;
+  }
+  // round(sum / 2^s), ties away from zero, for 0 <= s < 128; `over` when it needs 64 bits.
+  constexpr std::int64_t shifted(int s, bool& over) const {
+    const bool negative = (hi >> 63) != 0;
+    detail::U128 m{hi, lo};
+    if (negative) {  // |sum| = ~sum + 1
+      m.lo = ~lo + 1;
+      m.hi = ~hi + (m.lo == 0 ? 1u : 0u);
+    }
+    const detail::u64 r = detail::round_shr(m, s, over);
+    if (r > static_cast<detail::u64>(INT64_MAX)) over = true;
+    const auto v = static_cast<std::int64_t>(over ? static_cast<detail::u64>(INT64_MAX) : r);
+    return negative ? -v : v;
   }
 };
 

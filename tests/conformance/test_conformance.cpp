@@ -184,14 +184,16 @@ TEST_P(Conformance, ADarkLightChangesNoPixel) {
 // Where each method evaluates, for the counting rules of firmware/counters.hpp. A new method
 // states its own here (the test fails until it does).
 enum class Sites {
-  kTriangle,            // one exact evaluation per triangle (flat)
-  kVertex,              // one per vertex of the draw, colours interpolated (Gouraud)
-  kPixel,               // one per pixel shaded
-  kPixelLightsSkipped,  // the same, with the lights a triangle faces away from left out
-  kPolynomials,         // fitted polynomials per pixel, a specular factor per light and pixel
-  kSpanTerms,           // per span, each light's specular term (Kuijk-Blake), some skipped
-  kSpanTermsAll,        // the same with none skipped
-  kSamplesAndPixels     // exact samples and exact pixels, fits between (kb-adaptive)
+  kTriangle,               // one exact evaluation per triangle (flat)
+  kVertex,                 // one per vertex of the draw, colours interpolated (Gouraud)
+  kPixel,                  // one per pixel shaded
+  kPixelLightsSkipped,     // the same, with the lights a triangle faces away from left out
+  kPolynomials,            // fitted polynomials per pixel, a specular factor per light and pixel
+  kSpanTerms,              // per span, each light's specular term (Kuijk-Blake), some skipped
+  kSpanTermsAll,           // the same with none skipped
+  kSamplesAndPixels,       // exact samples and exact pixels, fits between (kb-adaptive)
+  kVertexAndHighlights,    // diffuse at the vertices, highlights per pixel where not culled
+  kVertexAndHighlightsAll  // the same with none culled (brown-noskip)
 };
 const std::map<std::string_view, Sites> kSites = {
     {"flat", Sites::kTriangle},
@@ -200,6 +202,8 @@ const std::map<std::string_view, Sites> kSites = {
     {"duff", Sites::kPixelLightsSkipped},
     {"bishop-weimer", Sites::kPolynomials},
     {"bishop-weimer-finite", Sites::kPolynomials},
+    {"brown", Sites::kVertexAndHighlights},
+    {"brown-noskip", Sites::kVertexAndHighlightsAll},
     {"kb", Sites::kSpanTerms},
     {"kb-noskip", Sites::kSpanTermsAll},
     {"kb-decomposition", Sites::kSpanTerms},
@@ -266,6 +270,20 @@ TEST_P(Conformance, CountsAsTheCountersAreDefined) {
         EXPECT_LE(lighting, counter(f, "lattice_samples") + shaded);
         EXPECT_EQ(specular, lighting * lights);
         break;
+      case Sites::kVertexAndHighlights:  // the vertices' diffuse evaluates no specular factor
+        EXPECT_GT(lighting, 0u);
+        EXPECT_LE(lighting, 3 * triangles);
+        if (counter(f, "lights_skipped_triangle") == 0)  // the triangle: its highlight is on it
+          EXPECT_EQ(specular, shaded * lights);
+        else
+          EXPECT_LT(specular, shaded * lights);
+        break;
+      case Sites::kVertexAndHighlightsAll:
+        EXPECT_GT(lighting, 0u);
+        EXPECT_LE(lighting, 3 * triangles);
+        EXPECT_EQ(specular, shaded * lights);
+        EXPECT_EQ(counter(f, "lights_skipped_triangle"), 0u);
+        break;
     }
   }
 }
@@ -287,7 +305,7 @@ TEST(Registry, VerificationVariantsRenderTheirMethodsImage) {
       EXPECT_TRUE(draw(s, m.name).rgb == draw(s, original->name).rgb);
     }
   }
-  EXPECT_EQ(variants, 2);  // kb-noskip, kb-adaptive-noskip
+  EXPECT_EQ(variants, 3);  // kb-noskip, kb-adaptive-noskip, brown-noskip
 }
 
 // Bishop-Weimer's finite-eye extension changes only what varies: with the eye at infinity and
@@ -322,7 +340,7 @@ TEST(Registry, TheHostListsEveryRow) {
   }
   EXPECT_THROW(method_from_name("no-such-method"), std::invalid_argument);
   // Reserved ids have no row and no state: set_method refuses them.
-  for (const fw::Method reserved : {fw::Method::kBrown, fw::Method::kVlasic}) {
+  for (const fw::Method reserved : {fw::Method::kVlasic}) {
     EXPECT_EQ(fw::find_method(reserved), nullptr);
     EXPECT_EQ(fw::Device::method_bytes(reserved), 0u);
   }

@@ -24,6 +24,15 @@ constexpr double kUnit = static_cast<double>(std::int64_t{1} << kF);
 
 std::int64_t fixed(double v) { return std::llround(v * kUnit); }
 
+// A direction uniformly distributed on the sphere (rejection from the cube).
+dvec3 random_direction(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  dvec3 v;
+  do v = dvec3(unit(rng), unit(rng), unit(rng));
+  while (glm::length(v) < 0.2 || glm::length(v) > 1.0);
+  return glm::normalize(v);
+}
+
 struct Case {
   dvec3 c, a, b, d;
 };
@@ -38,12 +47,7 @@ double f(const Case& k, double u, double v) {
 TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
   std::mt19937_64 rng(20261203);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const auto random_unit = [&] {
-    dvec3 v;
-    do v = dvec3(unit(rng), unit(rng), unit(rng));
-    while (glm::length(v) < 0.2 || glm::length(v) > 1.0);
-    return glm::normalize(v);
-  };
+  const auto random_unit = [&rng] { return random_direction(rng); };
   double worst[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 2000; ++i) {
     // Curvature: the normal turns by up to ~0.05 rad per pixel (a 20-pixel triangle whose
@@ -112,12 +116,7 @@ BishopWeimerMethod::VectorField field_of(const dvec3& c, const dvec3& a, const d
 TEST(BishopWeimerFinite, CoefficientsMatchANumericalTaylorExpansion) {
   std::mt19937_64 rng(20261204);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const auto random_unit = [&] {
-    dvec3 v;
-    do v = dvec3(unit(rng), unit(rng), unit(rng));
-    while (glm::length(v) < 0.2 || glm::length(v) > 1.0);
-    return glm::normalize(v);
-  };
+  const auto random_unit = [&rng] { return random_direction(rng); };
   double worst[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 2000; ++i) {
     const double step = 0.05 * (i % 10 + 1) / 10.0;
@@ -156,6 +155,77 @@ TEST(BishopWeimerFinite, CoefficientsMatchANumericalTaylorExpansion) {
   // Measured 2026-12-03: 4.4e-9 (first order) and 0.5e-6 / 0.7e-6 (second order) of their
   // scale; pinned at 1e-5 as the single expansion's.
   for (int j = 1; j < 6; ++j) EXPECT_LT(worst[j], 1e-5) << j;
+}
+
+// The paper's own finite-eye coefficients T0..T5, in double, against the numerical expansion:
+// with its definitions of a..r as printed except m = D·D, n = 2 D·E, o = E·E (the list permutes
+// them) and the two errata of its last page applied to T4 (− fjlqr → + fjlqr, − 2f²nr →
+// − 2fl²nr), all six agree; as printed, T4 does not. (The firmware does not transcribe them:
+// expand_pair derives the same expansion, tested above.)
+struct PaperT {
+  double t[6];  // T0 .. T5: constant, y, x, y², xy, x²
+};
+PaperT paper_coefficients(const PairCase& k, bool errata) {
+  const dvec3 A = k.na, B = k.nb, C = k.nc, D = k.da, E = k.db, F = k.dc;
+  const double a = glm::dot(A, D), b = glm::dot(A, E) + glm::dot(B, D), c = glm::dot(B, E),
+               d = glm::dot(A, F) + glm::dot(C, D), e = glm::dot(B, F) + glm::dot(C, E),
+               f = glm::dot(C, F), g = glm::dot(A, A), h = 2 * glm::dot(A, B), i = glm::dot(B, B),
+               j = 2 * glm::dot(A, C), kk = 2 * glm::dot(B, C), l = glm::dot(C, C),
+               m = glm::dot(D, D), n = 2 * glm::dot(D, E), o = glm::dot(E, E),
+               p = 2 * glm::dot(D, F), q = 2 * glm::dot(E, F), r = glm::dot(F, F);
+  const double root = std::sqrt(l * r);
+  PaperT out;
+  out.t[0] = f / root;
+  out.t[1] = (2 * e * l * r - f * kk * r - f * l * q) / (2 * l * r * root);
+  out.t[2] = (2 * d * l * r - f * j * r - f * l * p) / (2 * l * r * root);
+  out.t[3] = (8 * c * l * l * r * r - 4 * e * kk * l * r * r - 4 * f * i * l * r * r +
+              3 * f * kk * kk * r * r - 4 * e * l * l * q * r + 2 * f * kk * l * q * r -
+              4 * f * l * l * o * r + 3 * f * l * l * q * q) /
+             (8 * l * l * r * r * root);
+  const double fjlqr = f * j * l * q * r;
+  const double last = errata ? -2 * f * l * l * n * r : -2 * f * f * n * r;
+  out.t[4] = (4 * b * l * l * r * r - 2 * d * kk * l * r * r - 2 * e * j * l * r * r -
+              2 * f * h * l * r * r + 3 * f * j * kk * r * r - 2 * d * l * l * q * r +
+              (errata ? fjlqr : -fjlqr) - 2 * e * l * l * p * r + f * kk * l * p * r + last +
+              3 * f * l * l * p * q) /
+             (4 * l * l * r * r * root);
+  out.t[5] = (8 * a * l * l * r * r - 4 * d * j * l * r * r - 4 * f * g * l * r * r +
+              3 * f * j * j * r * r - 4 * d * l * l * p * r + 2 * f * j * l * p * r -
+              4 * f * l * l * m * r + 3 * f * l * l * p * p) /
+             (8 * l * l * r * r * root);
+  return out;
+}
+
+TEST(BishopWeimerFinite, ThePapersCoefficientsNeedItsErrata) {
+  std::mt19937_64 rng(1986);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_unit = [&rng] { return random_direction(rng); };
+  double worst[6] = {0, 0, 0, 0, 0, 0}, printed_t4 = 0;
+  for (int s = 0; s < 500; ++s) {
+    const double step = 0.05;
+    const PairCase k{random_unit(),       random_unit() * step, random_unit() * step,
+                     random_unit() * 1.3, random_unit() * step, random_unit() * step};
+    const auto f = [&k](double u, double v) { return f_pair(k, u, v); };
+    const double h = 1e-3, g = 5e-3;
+    const double f00 = f(0, 0);
+    const double want[6] = {f00,
+                            (f(0, h) - f(0, -h)) / (2 * h),
+                            (f(h, 0) - f(-h, 0)) / (2 * h),
+                            (f(0, g) - 2 * f00 + f(0, -g)) / (2 * g * g),
+                            (f(g, g) - f(g, -g) - f(-g, g) + f(-g, -g)) / (4 * g * g),
+                            (f(g, 0) - 2 * f00 + f(-g, 0)) / (2 * g * g)};
+    const PaperT with = paper_coefficients(k, true), without = paper_coefficients(k, false);
+    const double scale[6] = {1, step, step, step * step, step * step, step * step};
+    for (int j = 0; j < 6; ++j)
+      worst[j] = std::max(worst[j], std::abs(with.t[j] - want[j]) / scale[j]);
+    printed_t4 = std::max(printed_t4, std::abs(without.t[4] - want[4]) / scale[4]);
+  }
+  std::printf(
+      "paper's T with errata, worst error / scale: %.3g %.3g %.3g %.3g %.3g %.3g; "
+      "printed T4: %.3g\n",
+      worst[0], worst[1], worst[2], worst[3], worst[4], worst[5], printed_t4);
+  for (int j = 0; j < 6; ++j) EXPECT_LT(worst[j], 1e-5) << j;
+  EXPECT_GT(printed_t4, 1e-2);  // as printed, T4 is wrong by far more than the differences' error
 }
 
 // With D the same everywhere the pair expansion is the single one (to rounding: it scales the

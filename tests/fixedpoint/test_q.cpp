@@ -119,6 +119,20 @@ TEST(Q, RawVocabulary) {
   EXPECT_EQ(s.sign(), 0);
   s.add_product(-1, 1);
   EXPECT_EQ(s.sign(), -1);
+  // The sum rounded once: 2^62 · 3 + 2^62 · 3 = 6 · 2^62, beyond 64 bits, / 2^62 -> 6; a
+  // negative total rounds its tie away from zero; a quotient beyond 63 bits is flagged.
+  bool over = false;
+  fx::Sum128 t;
+  t.add_product(std::int64_t{1} << 62, 3);
+  t.add_product(std::int64_t{1} << 62, 3);
+  EXPECT_EQ(t.shifted(62, over), 6);
+  EXPECT_FALSE(over);
+  fx::Sum128 u;
+  u.add_product(-5, std::int64_t{1} << 40);  // −5 · 2^40 / 2^41 = −2.5 -> −3
+  EXPECT_EQ(u.shifted(41, over), -3);
+  EXPECT_FALSE(over);
+  EXPECT_EQ(t.shifted(0, over), INT64_MAX);
+  EXPECT_TRUE(over);
   // π, π/2 and 2π in the angle format: round(π·2^29) and its half and double, rounded.
   EXPECT_EQ(fx::pi().raw(), 1686629713);
   EXPECT_EQ(fx::half_pi().raw(), 843314857);

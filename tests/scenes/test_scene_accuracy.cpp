@@ -79,6 +79,15 @@ constexpr Measured kMeasured[] = {
     {"dodecahedron-30", "bishop-weimer-finite", 0.995077, 1.255, 36},
     {"triangle", "bishop-weimer-finite", 0.981739, 4.657, 47},
     {"teapot", "bishop-weimer-finite", 0.999292, 0.181, 100},
+    // Brown (2026-12-03, as Duff's): Gouraud's diffuse, the smoothstep for the power (the fit's
+    // rms 0.04 of the peak at n = 20, docs/DECISIONS.md "Brown"); brown-noskip renders the same
+    // image (tests/conformance).
+    {"sphere-32", "brown", 0.975533, 6.239, 61},
+    {"sphere-40", "brown", 0.962004, 9.689, 59},
+    {"sphere-512", "brown", 0.992362, 1.948, 15},
+    {"dodecahedron-30", "brown", 0.962659, 9.522, 64},
+    {"triangle", "brown", 0.802317, 50.409, 153},
+    {"teapot", "brown", 0.989652, 2.639, 33},
 };
 
 struct Rendered {
@@ -149,6 +158,10 @@ constexpr Measured kHighestExponent[] = {
     // Above 164 Bishop-Weimer takes the power by repeated squaring (its 8 KiB table's range).
     {"triangle", "bishop-weimer", 0.943895, 14.307, 103},
     {"triangle", "bishop-weimer-finite", 0.984508, 3.950, 101},  // 2026-12-03
+    // Brown: no highlight at all: the Bézier triangle of N·H over the one large triangle never
+    // reaches c_lo = 0.99977 (Brown's Table 2: a quadratic falls short of the sphere when the
+    // normals are far apart), so the image is Gouraud's diffuse, Gouraud's numbers.
+    {"triangle", "brown", 0.844079, 39.760, 188},
     {"sphere-512", "flat", 0.991346, 2.207, 99},
     {"sphere-512", "gouraud", 0.997280, 0.694, 100},
     {"sphere-512", "phong", 0.999997, 0.001, 1},
@@ -162,6 +175,7 @@ constexpr Measured kHighestExponent[] = {
     {"sphere-512", "duff", 0.998594, 0.359, 53},  // 2026-12-03
     {"sphere-512", "bishop-weimer", 0.998614, 0.353, 51},
     {"sphere-512", "bishop-weimer-finite", 0.999578, 0.108, 13},
+    {"sphere-512", "brown", 0.997317, 0.684, 18},
 };
 
 class HighestExponent : public ::testing::TestWithParam<Measured> {};
