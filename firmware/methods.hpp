@@ -272,7 +272,7 @@ class BrownMethod final : public ShadingMethod {
   std::uint64_t revision_ = 0;
   const ShadeContext* ctx_ = nullptr;
   std::int64_t c_lo_ = 0;       // Q.30
-  std::int64_t inv_range_ = 0;  // 1 / (1 − c_lo), Q.40
+  std::int64_t inv_range_ = 0;  // 1 / (c_hi − c_lo), Q.40
   Counters* counters_ = nullptr;
   const Triangle* tri_ = nullptr;
   // Perspective-correct barycentrics: b_i = m_i / Σ m_j with m_i = λ_i w_min / w_i, λ the screen

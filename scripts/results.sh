@@ -175,11 +175,11 @@ PYEOF
 
 Brown culls a light from a triangle when all six control points of its Bézier triangle of N·H
 lie below the smoothstep's lower end c_lo: no pixel of it can then have a highlight. He reports
-that this left 10 % of the pixels of his scene (a space shuttle at 1024 x 1024, a highlight
-narrower than 3°) to evaluate. Ours, on every paper scene at its own size, from the device's
+that this left 10 % of the pixels of his scene (a space shuttle at 1024 x 1024; his examples'
+highlights end at 1.8° to 3°) to evaluate. Ours, on every paper scene at its own size, from the device's
 counters (\`tinyphong render SCENE -m brown\`): the (pixel, light) pairs that evaluated a
 highlight, as a share of all, and the (triangle, light) pairs culled. The material's n = 20
-gives c_lo = 0.890 (a highlight out to 27°, nine times Brown's cone), which is why more remains
+gives c_lo = 0.890 (a highlight out to 27°, nine times the widest of his), which is why more remains
 here; the triangle scene's one large triangle is never culled.
 
 | scene | lights | pixels shaded | highlights evaluated (pixel, light) | share | (triangle, light) culled |
