@@ -9,6 +9,7 @@
 
 #include "firmware/method.hpp"
 #include "fixedpoint/arith.hpp"
+#include "fixedpoint/wide.hpp"
 
 namespace tp::fw {
 
@@ -122,6 +123,64 @@ class PerspectiveBary {
   static constexpr std::int64_t kLim = std::int64_t{1} << 28;
   std::int64_t r_[3] = {0, 0, 0};
   int shift_ = 0;
+};
+
+// Perspective-correct barycentrics stepped along a span, with one reciprocal per pixel (none
+// where the three w are equal): b_i = m_i / Σ m_j (Brown eq. 9) with m_i = λ_i w_min / w_i, λ
+// the screen barycentrics; m_i at the span's first pixel by one division each, then stepped by
+// its exact-to-2^-40 change per pixel. screen_linear: take b = λ whatever the w (what the
+// screen-linear variants interpolate).
+class SteppedBarycentrics {
+ public:
+  using Q40 = fx::Q<22, 40, std::int64_t>;
+
+  void setup(const Triangle& t, bool screen_linear = false) {
+    tri_ = &t;
+    const q15_16 w0 = t.v[0].w, w1 = t.v[1].w, w2 = t.v[2].w;
+    affine_ = screen_linear || (w0.raw() == w1.raw() && w0.raw() == w2.raw());
+    q15_16 wmin = w0 < w1 ? w0 : w1;
+    wmin = w2 < wmin ? w2 : wmin;
+    const Lambdas step = lambdas_step_x(t);
+    for (int i = 0; i < 3; ++i) {
+      rho_[i] = affine_ ? kOne : fx::div<q1_30>(wmin, t.v[i].w).raw();
+      dm_[i] = fx::mul_shift_right(to_q40(step.l[i]), rho_[i], 30);
+    }
+  }
+  // Whether b is affine in screen space (then b = m, and m steps by dm exactly as b).
+  bool affine() const { return affine_; }
+  // Starts a span at pixel (x, y).
+  void start(std::int32_t x, std::int32_t y) {
+    const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{x} + 8, 16 * std::int64_t{y} + 8);
+    for (int i = 0; i < 3; ++i) m_[i] = fx::mul_shift_right(to_q40(lam.l[i]), rho_[i], 30);
+  }
+  // m at the current pixel and its step per pixel, Q.40 (for an affine triangle: b itself).
+  const std::int64_t* m() const { return m_; }
+  const std::int64_t* dm() const { return dm_; }
+  // The current pixel's barycentrics, Q.30 clamped to [0, 1]; then steps to the next pixel.
+  void next(std::int64_t b[3]) {
+    if (affine_) {
+      for (int i = 0; i < 3; ++i) b[i] = fx::round_shift_right(m_[i], 10);
+    } else {
+      const std::int64_t sum = fx::round_shift_right(m_[0] + m_[1] + m_[2], 10);  // Q.30, > 0
+      const std::int64_t inv = ((std::int64_t{1} << 60) + sum / 2) / (sum > 0 ? sum : 1);
+      for (int i = 0; i < 3; ++i) b[i] = fx::mul_shift_right(m_[i] >> 10, inv, 30);
+    }
+    for (int i = 0; i < 3; ++i) {
+      b[i] = b[i] < 0 ? 0 : (b[i] > kOne ? kOne : b[i]);
+      m_[i] += dm_[i];
+    }
+  }
+
+ private:
+  static constexpr std::int64_t kOne = std::int64_t{1} << 30;
+  std::int64_t to_q40(std::int64_t lambda) const {
+    return fx::div<Q40>(fx::int_q::from_raw(lambda), fx::int_q::from_raw(tri_->area2)).raw();
+  }
+  const Triangle* tri_ = nullptr;
+  bool affine_ = true;
+  std::int64_t rho_[3] = {0, 0, 0};  // w_min / w_i, Q.30
+  std::int64_t dm_[3] = {0, 0, 0};   // Q.40
+  std::int64_t m_[3] = {0, 0, 0};    // Q.40
 };
 
 }  // namespace tp::fw

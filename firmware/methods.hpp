@@ -274,14 +274,80 @@ class BrownMethod final : public ShadingMethod {
   std::int64_t c_lo_ = 0;       // Q.30
   std::int64_t inv_range_ = 0;  // 1 / (c_hi − c_lo), Q.40
   Counters* counters_ = nullptr;
-  const Triangle* tri_ = nullptr;
-  // Perspective-correct barycentrics: b_i = m_i / Σ m_j with m_i = λ_i w_min / w_i, λ the screen
-  // barycentrics; m_i and its step per pixel in x, Q.40. affine_: the three w equal, b = λ.
-  bool affine_ = true;
-  std::int64_t rho_[3] = {0, 0, 0};  // w_min / w_i, Q.30
-  std::int64_t dm_[3] = {0, 0, 0};   // Q.40
-  int lights_ = 0;                   // highlights on this triangle
+  SteppedBarycentrics bary_;  // Brown eq. 9
+  int lights_ = 0;            // highlights on this triangle
   Highlight highlight_[kMaxLights];
+};
+
+// 8. Vlasic's quadratic shading (shade_quadratic.cpp; Vlasic 2002, section 4.3): the colour lit
+//    at the six points (six_points.hpp) and clamped, the six coefficients of
+//    r(s, t) = C0 + C1 s + C2 t + C3 s² + C4 s t + C5 t² by his eq. 4.2, evaluated per pixel
+//    and channel at the pixel's (s, t) = (b1, b2) and clamped. Where (s, t) are affine in screen
+//    space (an orthographic view, or screen_linear) r is a quadratic along the span: forward
+//    differencing, two additions per channel and pixel from the span's first pixel. Under
+//    perspective (s, t) are the perspective-correct barycentrics, as Vlasic's "with the
+//    perspective divide": eq. 4.1 at every pixel, after one reciprocal. quadratic-screen takes
+//    screen-linear (s, t) under perspective too, and forward-differences everywhere.
+class QuadraticMethod final : public ShadingMethod {
+ public:
+  static constexpr bool kLightsVertices = true;  // the vertices' colours through the cache
+  explicit QuadraticMethod(bool screen_linear) : screen_linear_(screen_linear) {}
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+  // Vlasic eq. 4.2: the coefficients C0..C5 (Q.30, each an exact integer combination) of the
+  // quadratic through r0 at (s, t) = (0, 0), r1 (½, 0), r2 (1, 0), r3 (½, ½), r4 (0, 1) and
+  // r5 (0, ½), colours in [0, 1] (Q.30): |C| <= 8.
+  struct Coefficients {
+    std::int64_t c[6];
+  };
+  static Coefficients coefficients(const std::int64_t r[6]);
+  // Vlasic eq. 4.1 at (s, t) in [0, 1] (Q.30), Q.30 (the products at 28 fraction bits).
+  static std::int64_t evaluate(const Coefficients& q, std::int64_t s, std::int64_t t);
+
+  // The forward-differenced values' fraction bits (colour units): Q.52, |r| < 2^5 on a span.
+  static constexpr int kForwardFrac = 52;
+
+ private:
+  void start_forward();
+
+  bool screen_linear_ = false;
+  SteppedBarycentrics bary_;
+  Coefficients coef_[3];  // per channel
+  // Forward differencing (affine (s, t) with steps of at most one per pixel): r and its first
+  // difference at the current pixel and the constant second difference, per channel, Q.52.
+  bool forward_ = false;
+  std::int64_t r_[3] = {0, 0, 0}, d1_[3] = {0, 0, 0}, d2_[3] = {0, 0, 0};
+};
+
+// 9. Gouraud on the triangle subdivided into four at the six points (shade_gouraud_subdivided.cpp;
+//    Vlasic's fair comparison for quadratic shading, his Table 6.1): the same six colours as
+//    quadratic, each sub-triangle — {v0, m01, m20}, {m01, v1, m12}, {m20, m12, v2} and the middle
+//    {m01, m12, m20} — Gouraud-shaded in screen space. A midpoint is where the eye-space
+//    midpoint projects: (w_a S_a + w_b S_b) / (w_a + w_b) on screen, rounded to 1/16 pixel, so
+//    the pixels are those of Gouraud on the subdivided mesh. Per pixel the three inner edges'
+//    exact edge functions (one addition each) pick the sub-triangle; a span's run within one
+//    sub-triangle starts exactly and steps as Gouraud's.
+class GouraudSubdividedMethod final : public ShadingMethod {
+ public:
+  static constexpr bool kLightsVertices = true;
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+ private:
+  struct Part {
+    Triangle tri;  // the sub-triangle's screen positions and area
+    ScreenPlane plane[3];
+    std::int64_t step[3];     // per pixel, ScreenPlane::kStepFrac more fraction bits
+    bool stepped = false;     // steps exact (else every pixel from at())
+    bool degenerate = false;  // area2 <= 0 after rounding: its colour is constant
+    std::int64_t constant[3];
+  };
+  std::int64_t part_start(int k, std::int32_t x, std::int32_t y, int ch) const;
+
+  // Corners 0, 1, 2, then the middle, whose edges m01→m12, m12→m20 and m20→m01 are the inner
+  // edges: a pixel on the far side of one (its edge function negative) is in corner 1, 2 or 0.
+  Part part_[4];
 };
 
 }  // namespace tp::fw

@@ -134,6 +134,25 @@ inline constexpr MethodInfo kMethodTable[] = {
      {kApprox, kApprox, kExact},
      slot_of<BrownMethod, false>(),
      Method::kBrown},
+    {Method::kGouraudSubdivided,
+     "gouraud-subdivided",
+     "Gouraud on the triangle cut into four at its edge midpoints (Vlasic's comparison for "
+     "quadratic): lighting at the six points, colour interpolated per sub-triangle",
+     {kExact, kExact, kExact},
+     slot_of<GouraudSubdividedMethod>()},
+    {Method::kQuadratic,
+     "quadratic",
+     "Vlasic's quadratic shading: lighting at the vertices and edge midpoints, the colour's "
+     "quadratic by his eq. 4.2 at perspective-correct (s, t), forward-differenced where (s, t) "
+     "are affine",
+     {kExact, kExact, kExact},
+     slot_of<QuadraticMethod, false>()},
+    {Method::kQuadraticScreen,
+     "quadratic-screen",
+     "quadratic with screen-linear (s, t) under perspective too: forward-differenced everywhere "
+     "(the same image in orthographic views)",
+     {kExact, kExact, kExact},
+     slot_of<QuadraticMethod, true>()},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

@@ -3,6 +3,7 @@
 // colour and, per light left, the smoothstep of the Bézier triangle at the pixel's
 // perspective-correct barycentrics.
 #include "firmware/methods.hpp"
+#include "firmware/six_points.hpp"
 
 namespace tp::fw {
 namespace {
@@ -11,24 +12,6 @@ using Q40 = fx::Q<22, 40, std::int64_t>;
 constexpr std::int64_t kOne30 = std::int64_t{1} << 30;
 
 std::int64_t dot30(const Vec3u& a, const Vec3u& b) { return fx::dot<q1_30>(a, b).raw(); }
-
-Vec3u unit_sum(const Vec3u& a, const Vec3u& b) {  // normalize(a + b); zero if they cancel
-  return fx::normalize_fast(std::int64_t{a.x.raw()} + b.x.raw(),
-                            std::int64_t{a.y.raw()} + b.y.raw(),
-                            std::int64_t{a.z.raw()} + b.z.raw());
-}
-
-Vec3q16 midpoint(const Vec3q16& a, const Vec3q16& b) {  // rounded toward -inf: any one rule
-  const auto mid = [](q15_16 p, q15_16 q) {
-    return q15_16::from_raw(
-        static_cast<std::int32_t>((std::int64_t{p.raw()} + std::int64_t{q.raw()}) >> 1));
-  };
-  return Vec3q16{mid(a.x, b.x), mid(a.y, b.y), mid(a.z, b.z)};
-}
-
-// The six points of the Bézier triangle: vertices 0, 1, 2, then the midpoints of edges 0-1, 1-2
-// and 2-0 (Brown's N110, N011, N101 and their eye-space positions).
-constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
 
 // The smoothstep's range for exponent n (docs/DECISIONS.md, "Brown"): the least-squares fit
 // of s((c − c_lo) / (c_hi − c_lo)) to cos^n over 0..90°, tracked by
@@ -89,37 +72,16 @@ bool BrownMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   refresh_material(ctx);
   diffuse_ctx_.counters = ctx.counters;
   counters_ = ctx.counters;
-  tri_ = &tri;
   gouraud_.setup(tri, diffuse_ctx_);
 
-  // Perspective-correct barycentrics (Brown eq. 9): b_i ∝ λ_i / w_i.
-  const q15_16 w0 = tri.v[0].w, w1 = tri.v[1].w, w2 = tri.v[2].w;
-  affine_ = w0.raw() == w1.raw() && w0.raw() == w2.raw();
-  q15_16 wmin = w0 < w1 ? w0 : w1;
-  wmin = w2 < wmin ? w2 : wmin;
-  const Lambdas step = lambdas_step_x(tri);
-  for (int i = 0; i < 3; ++i) {
-    rho_[i] = affine_ ? kOne30 : fx::div<q1_30>(wmin, tri.v[i].w).raw();
-    const std::int64_t dl =
-        fx::div<Q40>(fx::int_q::from_raw(step.l[i]), fx::int_q::from_raw(tri.area2)).raw();
-    dm_[i] = fx::mul_shift_right(dl, rho_[i], 30);
-  }
+  bary_.setup(tri);  // Brown eq. 9: perspective-correct barycentrics
 
   lights_ = 0;
   if (ctx.material.ks.raw() == 0) return true;
   // The six normals: the vertices', and the edge midpoints' (Brown eq. 10).
-  Vec3u normal[6];
-  Vec3q16 point[6];
-  for (int i = 0; i < 3; ++i) {
-    normal[i] = tri.v[i].normal;
-    point[i] = tri.v[i].eye;
-  }
-  for (int e = 0; e < 3; ++e) {
-    const ShadeVertex& a = tri.v[kEdge[e][0]];
-    const ShadeVertex& b = tri.v[kEdge[e][1]];
-    normal[3 + e] = unit_sum(a.normal, b.normal);
-    point[3 + e] = midpoint(a.eye, b.eye);
-  }
+  const SixPoints six = six_points(tri);
+  const Vec3u* normal = six.normal;
+  const Vec3q16* point = six.point;
   counters_->normalizations += 3;
   // The eye direction at the six points (one for an eye at infinity).
   Vec3u eye[6];
@@ -165,27 +127,11 @@ void BrownMethod::shade_span(const Span& s, Rgb8* out) {
     }
     return;
   }
-  // m_i = λ_i ρ_i at the span's first pixel, Q.40.
-  const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
-  std::int64_t m[3];
-  for (int i = 0; i < 3; ++i) {
-    const std::int64_t l =
-        fx::div<Q40>(fx::int_q::from_raw(lam.l[i]), fx::int_q::from_raw(tri_->area2)).raw();
-    m[i] = fx::mul_shift_right(l, rho_[i], 30);
-  }
+  bary_.start(s.x0, s.y);
   constexpr std::int64_t kTop = std::int64_t{255} << k;
   for (int x = 0; x < length; ++x) {
-    // The pixel's barycentrics b_i = m_i / Σ m_j (Brown eq. 9), Q.30 in [0, 1].
-    std::int64_t b[3];
-    if (affine_) {
-      for (int i = 0; i < 3; ++i) b[i] = fx::round_shift_right(m[i], 10);
-    } else {
-      const std::int64_t sum = fx::round_shift_right(m[0] + m[1] + m[2], 10);  // Q.30, > 0
-      const std::int64_t inv = ((std::int64_t{1} << 60) + sum / 2) / (sum > 0 ? sum : 1);
-      for (int i = 0; i < 3; ++i) b[i] = fx::mul_shift_right(m[i] >> 10, inv, 30);
-    }
-    for (std::int64_t& v : b) v = v < 0 ? 0 : (v > kOne30 ? kOne30 : v);
-    for (int i = 0; i < 3; ++i) m[i] += dm_[i];
+    std::int64_t b[3];  // the pixel's barycentrics (Brown eq. 9), Q.30 in [0, 1]
+    bary_.next(b);
     std::int64_t acc[3] = {g.c[0], g.c[1], g.c[2]};
     for (int ch = 0; ch < 3; ++ch) g.c[ch] += g.dc[ch];
     for (int j = 0; j < lights_; ++j) {

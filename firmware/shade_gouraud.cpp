@@ -1,29 +1,12 @@
 #include "firmware/methods.hpp"
+#include "firmware/six_points.hpp"
 
 namespace tp::fw {
-
-namespace {
-
-// The vertex's colour, clamped to [0, 1] in Q.30: lit once per draw for a vertex of the vertex
-// buffer (the cache), every time for a vertex that clipping made.
-VertexLevels vertex_colour(const Triangle& tri, int i, const ShadeContext& ctx) {
-  const ShadeVertex& v = tri.v[i];
-  VertexLevels* cached = v.id >= 0 && tri.levels != nullptr ? &tri.levels[v.id] : nullptr;
-  if (cached != nullptr && cached->c[0] >= 0) return *cached;
-  constexpr std::int64_t one = std::int64_t{1} << 30;
-  const Radiance r = blinn_phong(ctx, v.eye, v.normal);
-  VertexLevels c;
-  for (int ch = 0; ch < 3; ++ch) c.c[ch] = static_cast<std::int32_t>(fx::clamp(r.c[ch], 0, one));
-  if (cached != nullptr) *cached = c;
-  return c;
-}
-
-}  // namespace
 
 bool GouraudMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   std::int64_t c[3][3];  // [vertex][channel], clamped to [0, 1] in Q.30
   for (int i = 0; i < 3; ++i) {
-    const VertexLevels v = vertex_colour(tri, i, ctx);
+    const VertexLevels v = vertex_levels(tri, i, ctx);
     for (int ch = 0; ch < 3; ++ch) c[i][ch] = v.c[ch];
   }
   steps_exact_ = true;

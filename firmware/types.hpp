@@ -43,7 +43,7 @@ enum class Method : std::uint32_t {
   kBishopWeimer = 5,      // Bishop-Weimer fast Phong (firmware/shade_bishop_weimer.cpp)
   kKuijkBlake = 6,        // Kuijk-Blake one-vector, eq. 4 (firmware/kb/)
   kBrown = 7,             // Brown's Bézier-triangle highlights (firmware/shade_brown.cpp)
-  kVlasic = 8,            // reserved
+  kQuadratic = 8,         // Vlasic's quadratic shading (firmware/shade_quadratic.cpp)
   kKuijkBlakeNoSkip = 9,  // the same with every skip disabled (verification: identical image)
   // 10: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
   kKuijkBlakeDecomposition = 11,   // Kuijk-Blake decomposition, eq. 2
@@ -54,6 +54,9 @@ enum class Method : std::uint32_t {
   // Bishop-Weimer's finite-eye extension (firmware/shade_bishop_weimer_finite.cpp).
   kBishopWeimerFinite = 16,
   kBrownNoSkip = 17,  // brown without its convex-hull culling (verification: identical image)
+  // Gouraud on the triangle cut into four at its edge midpoints (shade_gouraud_subdivided.cpp).
+  kGouraudSubdivided = 18,
+  kQuadraticScreen = 19,  // quadratic with screen-linear (s, t) under perspective too
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

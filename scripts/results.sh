@@ -85,11 +85,11 @@ EOF
 ## 2, 4 and 8 lights
 
 Lights as listed in \`scenes/README.md\` (the base light first). Methods: Gouraud (the
-yardstick), exact fixed-point Phong, Duff, Bishop-Weimer (both forms), Brown, the three
-Kuijk-Blake evaluations and kb-adaptive.
+yardstick), exact fixed-point Phong, Duff, Bishop-Weimer (both forms), Brown, Vlasic's quadratic
+shading and its subdivided-Gouraud comparison, the three Kuijk-Blake evaluations and kb-adaptive.
 
 EOF
-  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3
+  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3
   cat <<EOF
 
 ## Bishop & Weimer's own table, beside ours
@@ -213,10 +213,10 @@ The steadier cost figure: instructions executed inside \`tp::fw::Device::draw\` 
 vertex cache, clipping, set-up, spans and pixels; the clear is outside), counted by
 callgrind for one frame of each scene, divided by the frame's pixels written (repeatable to the
 instruction on any x86-64 machine with the same compiler). \`bash scripts/instructions.sh
---methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,kb,kb-adaptive\`, $(date +%Y-%m-%d).
+--methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-adaptive\`, $(date +%Y-%m-%d).
 
 EOF
-    bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,kb,kb-adaptive
+    bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-adaptive
   fi
 } > "$out.tmp"
 mv "$out.tmp" "$out"

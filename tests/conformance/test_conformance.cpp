@@ -184,16 +184,17 @@ TEST_P(Conformance, ADarkLightChangesNoPixel) {
 // Where each method evaluates, for the counting rules of firmware/counters.hpp. A new method
 // states its own here (the test fails until it does).
 enum class Sites {
-  kTriangle,               // one exact evaluation per triangle (flat)
-  kVertex,                 // one per vertex of the draw, colours interpolated (Gouraud)
-  kPixel,                  // one per pixel shaded
-  kPixelLightsSkipped,     // the same, with the lights a triangle faces away from left out
-  kPolynomials,            // fitted polynomials per pixel, a specular factor per light and pixel
-  kSpanTerms,              // per span, each light's specular term (Kuijk-Blake), some skipped
-  kSpanTermsAll,           // the same with none skipped
-  kSamplesAndPixels,       // exact samples and exact pixels, fits between (kb-adaptive)
-  kVertexAndHighlights,    // diffuse at the vertices, highlights per pixel where not culled
-  kVertexAndHighlightsAll  // the same with none culled (brown-noskip)
+  kTriangle,                // one exact evaluation per triangle (flat)
+  kVertex,                  // one per vertex of the draw, colours interpolated (Gouraud)
+  kPixel,                   // one per pixel shaded
+  kPixelLightsSkipped,      // the same, with the lights a triangle faces away from left out
+  kPolynomials,             // fitted polynomials per pixel, a specular factor per light and pixel
+  kSpanTerms,               // per span, each light's specular term (Kuijk-Blake), some skipped
+  kSpanTermsAll,            // the same with none skipped
+  kSamplesAndPixels,        // exact samples and exact pixels, fits between (kb-adaptive)
+  kVertexAndHighlights,     // diffuse at the vertices, highlights per pixel where not culled
+  kVertexAndHighlightsAll,  // the same with none culled (brown-noskip)
+  kSixSamples               // the vertices (shared ones lit once) and three midpoints per triangle
 };
 const std::map<std::string_view, Sites> kSites = {
     {"flat", Sites::kTriangle},
@@ -204,6 +205,9 @@ const std::map<std::string_view, Sites> kSites = {
     {"bishop-weimer-finite", Sites::kPolynomials},
     {"brown", Sites::kVertexAndHighlights},
     {"brown-noskip", Sites::kVertexAndHighlightsAll},
+    {"gouraud-subdivided", Sites::kSixSamples},
+    {"quadratic", Sites::kSixSamples},
+    {"quadratic-screen", Sites::kSixSamples},
     {"kb", Sites::kSpanTerms},
     {"kb-noskip", Sites::kSpanTermsAll},
     {"kb-decomposition", Sites::kSpanTerms},
@@ -284,6 +288,12 @@ TEST_P(Conformance, CountsAsTheCountersAreDefined) {
         EXPECT_EQ(specular, shaded * lights);
         EXPECT_EQ(counter(f, "lights_skipped_triangle"), 0u);
         break;
+      case Sites::kSixSamples:
+        EXPECT_GE(lighting, 3 * triangles + 3);  // three midpoints each, and some vertices
+        EXPECT_LE(lighting, 6 * triangles);
+        EXPECT_EQ(specular, lighting * lights);
+        EXPECT_GE(counter(f, "normalizations"), 3 * triangles);  // the midpoints' normals
+        break;
     }
   }
 }
@@ -306,6 +316,20 @@ TEST(Registry, VerificationVariantsRenderTheirMethodsImage) {
     }
   }
   EXPECT_EQ(variants, 3);  // kb-noskip, kb-adaptive-noskip, brown-noskip
+}
+
+// quadratic-screen differs from quadratic only where (s, t) are not affine in screen space: its
+// image is quadratic's, byte for byte, on every orthographic paper scene, and not on the teapot.
+TEST(Registry, QuadraticScreenIsQuadraticInOrthographicViews) {
+  int same = 0;
+  for (const std::string& name : paper_scenes()) {
+    SCOPED_TRACE(name);
+    const Scene s = paper_scene(name);
+    const bool equal = draw(s, "quadratic-screen").rgb == draw(s, "quadratic").rgb;
+    EXPECT_EQ(equal, s.camera.kind == CameraKind::Orthographic);
+    same += equal ? 1 : 0;
+  }
+  EXPECT_EQ(same, 20);  // the teapot's four are perspective
 }
 
 // Bishop-Weimer's finite-eye extension changes only what varies: with the eye at infinity and
@@ -340,7 +364,7 @@ TEST(Registry, TheHostListsEveryRow) {
   }
   EXPECT_THROW(method_from_name("no-such-method"), std::invalid_argument);
   // Reserved ids have no row and no state: set_method refuses them.
-  for (const fw::Method reserved : {fw::Method::kVlasic}) {
+  for (const fw::Method reserved : {static_cast<fw::Method>(10), static_cast<fw::Method>(20)}) {
     EXPECT_EQ(fw::find_method(reserved), nullptr);
     EXPECT_EQ(fw::Device::method_bytes(reserved), 0u);
   }

@@ -91,7 +91,7 @@ TEST(Brown, TheSmoothstepRangeIsTheLeastSquaresFit) {
       bool moved = true;
       while (moved) {
         moved = false;
-        for (const auto [dl, dh] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        for (const auto& [dl, dh] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
           const double e = mean_square(n, blo + dl * step, bhi + dh * step);
           if (e < best) {
             best = e;

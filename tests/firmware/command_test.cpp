@@ -138,9 +138,9 @@ TEST(Commands, TypedErrorsChangeNothing) {
                    l.type = LightType::kPoint;
                    l.position = Vec3q16{q16(0), q16(20000), q16(0)};
                  }));
-  // Ids that no method implements yet (update as methods land): 0, the reserved 8, 10 and
-  // ids past the enum.
-  for (std::uint32_t id : {0u, 8u, 10u, 18u, 99u})
+  // Ids that no method implements yet (update as methods land): 0, 10, 20 and ids past the
+  // enum.
+  for (std::uint32_t id : {0u, 10u, 20u, 99u})
     expect_refused("method", Error::kUnknownMethod,
                    [id](Loaded& r) { return r.dev.set_method(static_cast<Method>(id)); });
   expect_refused("vertices beyond capacity", Error::kIndexOutOfRange, [](Loaded& r) {
@@ -332,8 +332,8 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
   expect_stream_refused("flag 2", Error::kBadArgument, {command_header(Opcode::kSetCulling, 1), 2});
   expect_stream_refused("viewport flag 5", Error::kBadArgument,
                         {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 5});
-  expect_stream_refused("method 8 (reserved)", Error::kUnknownMethod,
-                        {command_header(Opcode::kSetMethod, 1), 8});
+  expect_stream_refused("method 10 (unassigned)", Error::kUnknownMethod,
+                        {command_header(Opcode::kSetMethod, 1), 10});
   // A vertex upload whose second chunk holds a bad normal: the first 64 vertices must not land.
   std::vector<std::uint32_t> up{command_header(Opcode::kUploadVertices, 2 + 6 * 64), 0, 64};
   for (int i = 0; i < 64; ++i) up.insert(up.end(), {0, 0, 0, 0, 0, i == 63 ? 5u : (1u << 30)});

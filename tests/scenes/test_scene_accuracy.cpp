@@ -88,6 +88,27 @@ constexpr Measured kMeasured[] = {
     {"dodecahedron-30", "brown", 0.962659, 9.522, 64},
     {"triangle", "brown", 0.802317, 50.409, 153},
     {"teapot", "brown", 0.989652, 2.639, 33},
+    // Vlasic's quadratic shading and subdivided Gouraud (2026-12-03, `tinyphong render SCENE -m
+    // METHOD --compare`): colour from six points per triangle. quadratic-screen is quadratic's
+    // image in the orthographic scenes (tests/conformance) and differs on the teapot only.
+    {"sphere-32", "gouraud-subdivided", 0.983770, 4.139, 64},
+    {"sphere-40", "gouraud-subdivided", 0.986089, 3.547, 34},
+    {"sphere-512", "gouraud-subdivided", 0.998451, 0.395, 9},
+    {"dodecahedron-30", "gouraud-subdivided", 0.976506, 5.991, 88},
+    {"triangle", "gouraud-subdivided", 0.908393, 23.360, 108},
+    {"teapot", "gouraud-subdivided", 0.998510, 0.380, 35},
+    {"sphere-32", "quadratic", 0.982371, 4.495, 46},
+    {"sphere-40", "quadratic", 0.984720, 3.896, 36},
+    {"sphere-512", "quadratic", 0.998998, 0.255, 6},
+    {"dodecahedron-30", "quadratic", 0.976243, 6.058, 77},
+    {"triangle", "quadratic", 0.932354, 17.250, 94},
+    {"teapot", "quadratic", 0.999092, 0.232, 53},
+    {"sphere-32", "quadratic-screen", 0.982371, 4.495, 46},
+    {"sphere-40", "quadratic-screen", 0.984720, 3.896, 36},
+    {"sphere-512", "quadratic-screen", 0.998998, 0.255, 6},
+    {"dodecahedron-30", "quadratic-screen", 0.976243, 6.058, 77},
+    {"triangle", "quadratic-screen", 0.932354, 17.250, 94},
+    {"teapot", "quadratic-screen", 0.999032, 0.247, 53},
 };
 
 struct Rendered {
@@ -162,6 +183,10 @@ constexpr Measured kHighestExponent[] = {
     // reaches c_lo = 0.99977 (Brown's Table 2: a quadratic falls short of the sphere when the
     // normals are far apart), so the image is Gouraud's diffuse, Gouraud's numbers.
     {"triangle", "brown", 0.844079, 39.760, 188},
+    // Six points per triangle (2026-12-03): the narrow highlight falls between them.
+    {"triangle", "gouraud-subdivided", 0.958070, 10.692, 115},
+    {"triangle", "quadratic", 0.989211, 2.751, 107},
+    {"triangle", "quadratic-screen", 0.989211, 2.751, 107},
     {"sphere-512", "flat", 0.991346, 2.207, 99},
     {"sphere-512", "gouraud", 0.997280, 0.694, 100},
     {"sphere-512", "phong", 0.999997, 0.001, 1},
@@ -176,6 +201,9 @@ constexpr Measured kHighestExponent[] = {
     {"sphere-512", "bishop-weimer", 0.998614, 0.353, 51},
     {"sphere-512", "bishop-weimer-finite", 0.999578, 0.108, 13},
     {"sphere-512", "brown", 0.997317, 0.684, 18},
+    {"sphere-512", "gouraud-subdivided", 0.999025, 0.249, 100},
+    {"sphere-512", "quadratic", 0.999389, 0.156, 99},
+    {"sphere-512", "quadratic-screen", 0.999389, 0.156, 99},
 };
 
 class HighestExponent : public ::testing::TestWithParam<Measured> {};
