@@ -431,6 +431,11 @@ glm::dmat4 Transform::matrix() const {
   return glm::scale(m, glm::dvec3(scale));
 }
 
+void keep_specular_only(Scene& scene) {
+  scene.material.ka = 0;
+  scene.material.kd = 0;
+}
+
 glm::dmat4 view_matrix(const Camera& c) {
   if (c.kind == CameraKind::Orthographic) return glm::dmat4(1.0);  // world = eye space
   return glm::lookAt(c.position, c.target, c.up);

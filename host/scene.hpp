@@ -122,6 +122,10 @@ Scene load_scene(const std::filesystem::path& file);
 Scene parse_scene(std::string_view text, const std::string& file,
                   const std::filesystem::path& base_dir);
 
+// The same frame's specular part alone, as Vlasic shows his methods' (his Figures 6.1-6.14):
+// ka = kd = 0, the lights, exponent and ks unchanged; for the device and the reference alike.
+void keep_specular_only(Scene& scene);
+
 glm::dmat4 view_matrix(const Camera& camera);
 glm::dmat4 projection_matrix(const Camera& camera, int width, int height);
 // MV for one mesh = view · model.

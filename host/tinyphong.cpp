@@ -43,6 +43,7 @@ struct SceneOptions {
   int budget = 0;    // 0: the scene's
   std::string size;  // "WxH"
   double rotate_deg = 0;
+  bool specular_only = false;
 };
 
 // --budget, for the commands that run the device (render, record).
@@ -60,12 +61,15 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--size", o.size, "override the resolution, WIDTHxHEIGHT (e.g. 1024x1024)");
   cmd->add_option("--rotate", o.rotate_deg, "rotate the objects about the world y axis (degrees)");
+  cmd->add_flag("--specular-only", o.specular_only,
+                "the specular part alone: ka = kd = 0 (Vlasic's specular-only images)");
 }
 
 Scene load(const SceneOptions& o) {
   Scene s = load_scene(o.scene);
   if (!o.method.empty()) s.method = o.method;
   if (o.budget != 0) s.budget = o.budget;
+  if (o.specular_only) keep_specular_only(s);
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;

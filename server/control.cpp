@@ -35,7 +35,8 @@ std::span<const std::string_view> allowed_fields(ControlType t) {
     case ControlType::set_resolution: return size;
     case ControlType::animate:
     case ControlType::pause:
-    case ControlType::reference: return on;
+    case ControlType::reference:
+    case ControlType::specular_only: return on;
     case ControlType::ack: return ack;
     case ControlType::step:
     case ControlType::get_state:
@@ -146,7 +147,8 @@ Result check_combination(const json& j, Command& c) {
     }
     case ControlType::animate:
     case ControlType::pause:
-    case ControlType::reference: return need("on");
+    case ControlType::reference:
+    case ControlType::specular_only: return need("on");
     case ControlType::remove_light: return need("index");
     case ControlType::add_light: {
       Result r = need("kind");
@@ -288,6 +290,7 @@ Result apply_control(const Command& c, FrameSource& src, LoopFlags& flags, bool&
     case ControlType::set_scene: return src.load_scene(*c.text);
     case ControlType::set_method: s.method = *c.text; break;
     case ControlType::set_budget: s.budget = *c.levels; break;
+    case ControlType::specular_only: s.specular_only = *c.on; break;
     case ControlType::set_exponent:
       s.use_ab = c.a.has_value();
       if (s.use_ab) {

@@ -22,6 +22,7 @@ enum class ControlType {
   pause,
   step,
   reference,
+  specular_only,
   ack,
   get_state,
 };

@@ -75,7 +75,8 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
   if (width > 0) sc.width = width;
   if (height > 0) sc.height = height;
   if (!method.empty()) sc.method = method;
-  if (Result r = install(std::move(sc), scene); !r.ok()) throw std::runtime_error(r.message());
+  if (Result r = install(std::move(sc), scene, false); !r.ok())
+    throw std::runtime_error(r.message());
 }
 
 std::vector<MethodEntry> DeviceSource::methods() const {
@@ -86,33 +87,39 @@ std::vector<MethodEntry> DeviceSource::methods() const {
   return out;
 }
 
-Result DeviceSource::install(host::Scene sc, const std::string& name) {
+// sc carries the user's material; what the device and the reference render is the specular
+// part alone when specular_only.
+Result DeviceSource::install(host::Scene sc, const std::string& name, bool specular_only) {
+  host::Scene shown = sc;
+  if (specular_only) host::keep_specular_only(shown);
   try {
-    host::method_from_name(sc.method);  // names the valid choices if not one
-    renderer_.set_scene(sc);            // on failure the device keeps the previous scene
+    host::method_from_name(shown.method);  // names the valid choices if not one
+    renderer_.set_scene(shown);            // on failure the device keeps the previous scene
   } catch (const std::exception& e) {
     return Result::failure(e.what());
   }
   settings_ = to_settings(sc, name);
-  scene_ = std::make_shared<const host::Scene>(std::move(sc));
+  settings_.specular_only = specular_only;
+  scene_ = std::make_shared<const host::Scene>(std::move(shown));
   return Result::success();
 }
 
 Result DeviceSource::apply(const ViewSettings& s) {
   if (s.lights.size() > fw::kMaxLights)
     return Result::failure("too many lights");  // the device's slots
-  return install(with_settings(*scene_, s), s.scene);
+  return install(with_settings(*scene_, s), s.scene, s.specular_only);
 }
 
 Result DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
     return Result::failure("unknown scene '" + name + "'");
   try {
-    // The viewer keeps the method and budget it shows; the scene file's own are for the CLI.
+    // The viewer keeps the method, budget and view it shows; the scene file's own method and
+    // budget are for the CLI.
     host::Scene sc = host::load_scene(dir_ / (name + ".json"));
     sc.method = settings_.method;
     sc.budget = settings_.budget;
-    return install(std::move(sc), name);
+    return install(std::move(sc), name, settings_.specular_only);
   } catch (const std::exception& e) {
     return Result::failure(e.what());
   }

@@ -25,7 +25,7 @@ class DeviceSource : public FrameSource {
   std::function<Image()> reference_task(double rotation_radians) override;
 
  private:
-  Result install(host::Scene scene, const std::string& name);
+  Result install(host::Scene scene, const std::string& name, bool specular_only);
 
   std::filesystem::path dir_;
   std::vector<std::string> scene_names_;

@@ -31,6 +31,9 @@ struct ViewSettings {
   std::array<double, 3> color{1, 1, 1};
   std::vector<LightSetting> lights;
   int width = 320, height = 240;
+  // Render the specular part alone (ka = kd = 0 for the device and the reference; ka and kd
+  // above stay what the user set).
+  bool specular_only = false;
 };
 
 // A shading method as the page lists it: the registry's row (firmware/registry.hpp) in words.

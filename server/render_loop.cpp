@@ -116,6 +116,7 @@ void RenderLoop::publish_state() {
             {"animate", flags_.animate},
             {"paused", flags_.paused},
             {"reference", flags_.reference},
+            {"specular_only", s.specular_only},
             {"methods", methods},
             {"method_info", method_info},
             {"scenes", src_->scenes()}};

@@ -227,7 +227,7 @@ function applyState(s) {
   fillSelect('scene', s.scenes, s.scene);
   fillSelect('method', s.methods, s.method);
   describeMethods(s);
-  for (const k of ['width', 'height', 'budget', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference']) setValue(k, s[k]);
+  for (const k of ['width', 'height', 'budget', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference', 'specular_only']) setValue(k, s[k]);
   setValue('a', Number(s.a).toFixed(4));
   setValue('b', Number(s.b).toFixed(4));
   $('use-ab').checked = s.use_ab;
@@ -290,6 +290,7 @@ function wire() {
   $('animate').onchange = (e) => send({ type: 'animate', on: e.target.checked });
   $('paused').onchange = (e) => send({ type: 'pause', on: e.target.checked });
   $('reference').onchange = (e) => send({ type: 'reference', on: e.target.checked });
+  $('specular_only').onchange = (e) => send({ type: 'specular_only', on: e.target.checked });
   $('step').onclick = () => send({ type: 'step' });
   $('apply-exp').onclick = () => send($('use-ab').checked
     ? { type: 'set_exponent', a: Number($('a').value), b: Number($('b').value) }

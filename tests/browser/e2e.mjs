@@ -160,6 +160,34 @@ try {
   check(samples(k1) > 0 && samples(k8) < samples(k1),
         `budget 8 samples less than budget 1 (lattice_samples ${samples(k8)} < ${samples(k1)})`);
 
+  // 3c. The specular-only view (ka = kd = 0 for device and reference): a darker frame, painted as
+  // sent, its reference comparison for the same frame; the material's ka and kd are kept.
+  await page.check('#specular_only');
+  await page.waitForFunction(() => window.tp.state.specular_only === true, null, { timeout: 10000 });
+  const sp = await settled(page, k8.painted.id + 1);
+  check(sp.painted.checksum === sp.stats.frame.checksum && sp.painted.checksum !== k8.painted.checksum &&
+        sp.state.ka > 0 && sp.state.kd > 0,
+        `specular only: frame ${sp.painted.id} painted as sent, ka ${sp.state.ka} and kd ${sp.state.kd} kept`);
+  const brightness = (id) => page.evaluate((cid) => {
+    const c = document.getElementById(cid);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let sum = 0;
+    for (let i = 0; i < d.length; i += 4) sum += d[i] + d[i + 1] + d[i + 2];
+    return sum;
+  }, id);
+  await page.waitForFunction((id) => window.tp.stats.error && window.tp.stats.error.frame_id >= id,
+                             sp.painted.id, { timeout: 60000 });
+  const spe = await page.evaluate(() => window.tp.stats.error);
+  check(spe.correctness > 0.5 && spe.correctness <= 1,
+        `specular only: reference comparison for frame ${spe.frame_id}, colour correctness ${spe.correctness.toFixed(5)}`);
+  const dark = await brightness('device');
+  await page.uncheck('#specular_only');
+  await page.waitForFunction(() => window.tp.state.specular_only === false, null, { timeout: 10000 });
+  const full = await settled(page, sp.painted.id + 1);
+  const light = await brightness('device');
+  check(full.painted.checksum === full.stats.frame.checksum && dark < light,
+        `specular only is darker than the full frame (${dark} < ${light})`);
+
   // 4. Restart the server on the same port: the page reconnects and paints again.
   const port = server.port;
   const before = await page.evaluate(() => window.tp.framesPainted);

@@ -109,6 +109,8 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_resolution\",\"width\":4096,\"height\":100}", "'width' out of range"},
       {"{\"type\":\"set_resolution\",\"width\":100.5,\"height\":100}", "must be an integer"},
       {"{\"type\":\"animate\",\"on\":\"yes\"}", "true or false"},
+      {"{\"type\":\"specular_only\"}", "missing 'on'"},
+      {"{\"type\":\"specular_only\",\"on\":1}", "true or false"},
       {"{\"type\":\"ack\",\"id\":-3,\"kind\":\"device\"}", "'id' must be an unsigned integer"},
   };
   for (const auto& [msg, why] : cases) {
@@ -166,6 +168,8 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"n\":10000}"), "");  // the device's bound
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":0.3}"), "");
   EXPECT_TRUE(src.settings().use_ab);
+  EXPECT_EQ(run("{\"type\":\"specular_only\",\"on\":true}"), "");
+  EXPECT_TRUE(src.settings().specular_only);
   EXPECT_EQ(run("{\"type\":\"pause\",\"on\":true}"), "");
   EXPECT_TRUE(flags.paused);
   EXPECT_EQ(run("{\"type\":\"step\"}"), "");

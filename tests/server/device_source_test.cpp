@@ -1,0 +1,69 @@
+// The server's device source: the specular-only view renders the specular part alone for the
+// device and the reference, keeps the material the user set, and survives a scene change.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "server/device_source.hpp"
+
+namespace tp::server {
+namespace {
+
+// Sum of all channels, and whether every channel of a is at most b's.
+struct Compared {
+  long long sum_a = 0, sum_b = 0;
+  bool a_at_most_b = true;
+};
+Compared compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+  Compared c;
+  EXPECT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    c.sum_a += a[i];
+    c.sum_b += b[i];
+    c.a_at_most_b = c.a_at_most_b && a[i] <= b[i];
+  }
+  return c;
+}
+
+// With ka = kd = 0 only non-negative specular terms remain, so every channel of the specular-only
+// frame is at most the full frame's (the clamp at 1 keeps that), and the frame is darker. The
+// same holds for the double reference, rendered from the same settings.
+TEST(DeviceSource, SpecularOnlyRendersTheSpecularPartAlone) {
+  DeviceSource src(TP_SCENES_DIR, "sphere-32", 96, 96, "quadratic");
+  const RenderedFrame full = src.render(0.0);
+  const Image full_ref = src.reference_task(0.0)();
+  ViewSettings s = src.settings();
+  const double ka = s.ka, kd = s.kd;
+  ASSERT_GT(ka, 0);
+  ASSERT_GT(kd, 0);
+  s.specular_only = true;
+  ASSERT_TRUE(src.apply(s).ok());
+  EXPECT_TRUE(src.settings().specular_only);
+  EXPECT_EQ(src.settings().ka, ka);  // the user's material, kept for when the view is left
+  EXPECT_EQ(src.settings().kd, kd);
+  const RenderedFrame spec = src.render(0.0);
+  const Compared d = compare(spec.image.rgb, full.image.rgb);
+  EXPECT_TRUE(d.a_at_most_b);
+  EXPECT_LT(2 * d.sum_a, d.sum_b);
+  EXPECT_GT(d.sum_a, 0);  // the highlight is there
+  const Compared r = compare(src.reference_task(0.0)().rgb, full_ref.rgb);
+  EXPECT_TRUE(r.a_at_most_b);
+  EXPECT_LT(2 * r.sum_a, r.sum_b);
+
+  // A scene change keeps the view; leaving it gives the full frame back, byte for byte.
+  ASSERT_TRUE(src.load_scene("triangle").ok());
+  EXPECT_TRUE(src.settings().specular_only);
+  ASSERT_TRUE(src.load_scene("sphere-32").ok());
+  s = src.settings();
+  s.width = s.height = 96;
+  s.method = "quadratic";
+  ASSERT_TRUE(src.apply(s).ok());
+  EXPECT_EQ(src.render(0.0).image.rgb, spec.image.rgb);
+  s.specular_only = false;
+  ASSERT_TRUE(src.apply(s).ok());
+  EXPECT_EQ(src.render(0.0).image.rgb, full.image.rgb);
+}
+
+}  // namespace
+}  // namespace tp::server
