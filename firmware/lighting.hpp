@@ -122,6 +122,13 @@ inline PowerFn unrolled_power(std::uint32_t n) {
   }
 }
 
+// Whether a light adds anything: switched on, and not black. The methods that set up per-light
+// terms per triangle leave the others out (they would add zero).
+inline bool contributes(const LightState& l) {
+  return l.type != LightType::kOff &&
+         (l.color[0].raw() != 0 || l.color[1].raw() != 0 || l.color[2].raw() != 0);
+}
+
 // Lighting at eye-space point p with unit normal n.
 Radiance blinn_phong(const ShadeContext& ctx, const Vec3q16& p, const Vec3u& n);
 

@@ -332,8 +332,7 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   if (ctx.eye == EyeMode::kFinite) ++counters_->normalizations;
   bool saturated = false;
   for (const LightState& l : ctx.lights) {
-    if (l.type == LightType::kOff) continue;
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    if (!contributes(l)) continue;
     const Vec3u lv = light_direction(l, p);
     const Vec3u h = halfway(lv, eye);
     counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;

@@ -104,8 +104,7 @@ bool BishopWeimerFiniteMethod::setup(const Triangle& tri, const ShadeContext& ct
     return expand(normal, dir, !steep_normal, saturated);
   };
   for (const LightState& l : ctx.lights) {
-    if (l.type == LightType::kOff) continue;
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    if (!contributes(l)) continue;
     Vec3u lv[3], h[3];
     for (int i = 0; i < 3; ++i) {
       lv[i] = light_direction(l, tri.v[i].eye);

@@ -89,8 +89,7 @@ bool BrownMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   if (ctx.eye == EyeMode::kFinite) counters_->normalizations += 6;
 
   for (const LightState& l : ctx.lights) {
-    if (l.type == LightType::kOff) continue;
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    if (!contributes(l)) continue;
     // The six cosines N·H, H at each point (Brown: one H where light and eye are at infinity).
     std::int64_t c[6];
     const bool constant = l.type == LightType::kDirectional && ctx.eye == EyeMode::kInfinite;

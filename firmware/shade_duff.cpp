@@ -42,8 +42,7 @@ bool DuffMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   if (ctx.eye == EyeMode::kFinite) ++counters_->normalizations;
   lights_ = 0;
   for (const LightState& l : ctx.lights) {
-    if (l.type == LightType::kOff) continue;
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    if (!contributes(l)) continue;
     const Vec3u lv = light_direction(l, p);
     const Vec3u h = halfway(lv, v);
     counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;

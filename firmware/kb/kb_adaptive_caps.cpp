@@ -201,7 +201,7 @@ int KbAdaptiveMethod::peak_level(const Cell& c, std::uint32_t& peaks) {
   for (int li = 0; li < point_.lights(); ++li) {
     if (((peaks >> li) & 1u) == 0) continue;
     const LightState& l = point_.light(li);
-    if (l.color[0].raw() == 0 && l.color[1].raw() == 0 && l.color[2].raw() == 0) continue;
+    if (!contributes(l)) continue;  // (the shader's lights are all on)
     if (near_lights && l.type == LightType::kPoint && light_near_cell(l, at, size_inf)) {
       may_peak |= std::uint32_t{1} << li;  // refine once more, and test again there
       level = std::max(level, c.level + 1);

@@ -6,6 +6,8 @@
 // in double).
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -42,6 +44,20 @@ double f(const Case& k, double u, double v) {
   return glm::dot(k.d, n) / glm::length(n);
 }
 
+// f's second-order Taylor coefficients at (0, 0) by central differences, {f, f_u, f_v, f_uu / 2,
+// f_uv, f_vv / 2}: steps h for the first derivatives, g for the second (their rounding error
+// ~eps/g² would otherwise dominate; the truncation error is g² times the fourth derivatives).
+template <class F>
+std::array<double, 6> numerical_taylor(const F& f, double h, double g) {
+  const double f00 = f(0, 0);
+  return {f00,
+          (f(h, 0) - f(-h, 0)) / (2 * h),
+          (f(0, h) - f(0, -h)) / (2 * h),
+          (f(g, 0) - 2 * f00 + f(-g, 0)) / (2 * g * g),
+          (f(g, g) - f(g, -g) - f(-g, g) + f(-g, -g)) / (4 * g * g),
+          (f(0, g) - 2 * f00 + f(0, -g)) / (2 * g * g)};
+}
+
 // The largest error of the six coefficients against the numerical ones, relative to the size
 // of each derivative's scale (|A|, |A|² ...) over random cases of the given curvature.
 TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
@@ -65,16 +81,9 @@ TEST(BishopWeimer, CoefficientsMatchANumericalTaylorExpansion) {
     bool saturated = false;
     const BishopWeimerMethod::Taylor t = BishopWeimerMethod::expand(field, d, true, saturated);
     ASSERT_FALSE(saturated);
-    // Steps: 1e-3 pixel for the first derivatives, 2e-2 for the second (their rounding error
-    // ~eps/h² would otherwise dominate; the truncation error is h² of the fourth derivative).
-    const double h = 1e-3, g = 2e-2;
-    const double f00 = f(k, 0, 0);
-    const double fu = (f(k, h, 0) - f(k, -h, 0)) / (2 * h);
-    const double fv = (f(k, 0, h) - f(k, 0, -h)) / (2 * h);
-    const double fuu = (f(k, g, 0) - 2 * f00 + f(k, -g, 0)) / (g * g);
-    const double fvv = (f(k, 0, g) - 2 * f00 + f(k, 0, -g)) / (g * g);
-    const double fuv = (f(k, g, g) - f(k, g, -g) - f(k, -g, g) + f(k, -g, -g)) / (4 * g * g);
-    const double want[6] = {f00, fu, fv, fuu / 2, fuv, fvv / 2};
+    // Steps: 1e-3 pixel for the first derivatives, 2e-2 for the second.
+    const std::array<double, 6> want =
+        numerical_taylor([&k](double u, double v) { return f(k, u, v); }, 1e-3, 2e-2);
     const double got[6] = {t.c0 / kUnit,  t.c1 / kUnit,  t.c2 / kUnit,
                            t.c11 / kUnit, t.c12 / kUnit, t.c22 / kUnit};
     const double scale[6] = {1, step, step, step * step, step * step, step * step};
@@ -134,15 +143,8 @@ TEST(BishopWeimerFinite, CoefficientsMatchANumericalTaylorExpansion) {
     // g smaller than above: with both vectors turning, f's fourth derivatives are larger, and
     // at g = 2e-2 the differences' own truncation error reached 1.2e-5 of c12's scale (it fell
     // 16-fold at g = 5e-3: truncation, g²).
-    const double h = 1e-3, g = 5e-3;
-    const auto f = [&k](double u, double v) { return f_pair(k, u, v); };
-    const double f00 = f(0, 0);
-    const double fu = (f(h, 0) - f(-h, 0)) / (2 * h);
-    const double fv = (f(0, h) - f(0, -h)) / (2 * h);
-    const double fuu = (f(g, 0) - 2 * f00 + f(-g, 0)) / (g * g);
-    const double fvv = (f(0, g) - 2 * f00 + f(0, -g)) / (g * g);
-    const double fuv = (f(g, g) - f(g, -g) - f(-g, g) + f(-g, -g)) / (4 * g * g);
-    const double want[6] = {f00, fu, fv, fuu / 2, fuv, fvv / 2};
+    const std::array<double, 6> want =
+        numerical_taylor([&k](double u, double v) { return f_pair(k, u, v); }, 1e-3, 5e-3);
     const double got[6] = {t.c0 / kUnit,  t.c1 / kUnit,  t.c2 / kUnit,
                            t.c11 / kUnit, t.c12 / kUnit, t.c22 / kUnit};
     const double scale[6] = {1, step, step, step * step, step * step, step * step};
@@ -205,15 +207,10 @@ TEST(BishopWeimerFinite, ThePapersCoefficientsNeedItsErrata) {
     const double step = 0.05;
     const PairCase k{random_unit(),       random_unit() * step, random_unit() * step,
                      random_unit() * 1.3, random_unit() * step, random_unit() * step};
-    const auto f = [&k](double u, double v) { return f_pair(k, u, v); };
-    const double h = 1e-3, g = 5e-3;
-    const double f00 = f(0, 0);
-    const double want[6] = {f00,
-                            (f(0, h) - f(0, -h)) / (2 * h),
-                            (f(h, 0) - f(-h, 0)) / (2 * h),
-                            (f(0, g) - 2 * f00 + f(0, -g)) / (2 * g * g),
-                            (f(g, g) - f(g, -g) - f(-g, g) + f(-g, -g)) / (4 * g * g),
-                            (f(g, 0) - 2 * f00 + f(-g, 0)) / (2 * g * g)};
+    // The paper's T1 and T3 are the v terms, T2 and T5 the u terms (its order puts v first).
+    const std::array<double, 6> uv =
+        numerical_taylor([&k](double u, double v) { return f_pair(k, u, v); }, 1e-3, 5e-3);
+    const double want[6] = {uv[0], uv[2], uv[1], uv[5], uv[4], uv[3]};
     const PaperT with = paper_coefficients(k, true), without = paper_coefficients(k, false);
     const double scale[6] = {1, step, step, step * step, step * step, step * step};
     for (int j = 0; j < 6; ++j)
