@@ -25,6 +25,7 @@ for l in 2 4 8; do
   for s in ${base//,/ }; do multi+="${multi:+,}$s-l$l"; done
 done
 out=docs/RESULTS.md
+mkdir -p docs/charts
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 {
   cat <<EOF
@@ -65,8 +66,20 @@ figure than these times) are in the last section, from \`bash scripts/instructio
 EOF
   one=$(mktemp)
   "$bin" --reps "$reps" --scenes "$base" --peer llvmpipe | tee "$one"
+  python3 scripts/charts.py "$one" --drop-noskip --title "One light, six scenes" \
+    --out-prefix docs/charts/one-light >&2
   cat <<EOF
 ### Run time against error (one light, the six scenes above)
+
+Every method a point: the geometric mean of its time ratio to Gouraud over the six scenes (log
+scale) against its mean colour correctness, and against its largest max |error|; the dashed line
+joins the Pareto front (no method is both faster and better), the peer is the hollow square;
+the verification variants (-noskip, the same image as their method) are left out. Drawn by
+\`scripts/charts.py\` from the tables above.
+
+![One light: colour correctness against time](charts/one-light-correctness.svg)
+
+![One light: max error against time](charts/one-light-max-error.svg)
 
 Geometric mean of the time ratio to Gouraud; mean and worst colour correctness (Phong reference).
 
@@ -89,7 +102,21 @@ yardstick), exact fixed-point Phong, Duff, Bishop-Weimer (both forms), Brown, Vl
 shading and its subdivided-Gouraud comparison, the three Kuijk-Blake evaluations and kb-adaptive.
 
 EOF
-  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3
+  many=$(mktemp)
+  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3 | tee "$many"
+  python3 scripts/charts.py "$many" --title "2, 4 and 8 lights, eighteen scenes" \
+    --out-prefix docs/charts/many-lights >&2
+  rm -f "$many"
+  cat <<EOF
+
+### Run time against error (2, 4 and 8 lights)
+
+As for one light, over the eighteen multi-light scenes above.
+
+![2, 4 and 8 lights: colour correctness against time](charts/many-lights-correctness.svg)
+
+![2, 4 and 8 lights: max error against time](charts/many-lights-max-error.svg)
+EOF
   cat <<EOF
 
 ## Bishop & Weimer's own table, beside ours

@@ -39,6 +39,7 @@ std::span<const std::string_view> allowed_fields(ControlType t) {
     case ControlType::specular_only: return on;
     case ControlType::ack: return ack;
     case ControlType::step:
+    case ControlType::compare_all:
     case ControlType::get_state:
     case ControlType::unknown: return {};
   }
@@ -186,6 +187,7 @@ Result check_combination(const json& j, Command& c) {
       return Result::success();
     }
     case ControlType::step:
+    case ControlType::compare_all:
     case ControlType::get_state:
     case ControlType::unknown: return Result::success();
   }
@@ -246,7 +248,7 @@ ParseResult parse_control(const std::string& text) {
 
 bool changes_loop_flags_only(ControlType t) {
   return t == ControlType::animate || t == ControlType::pause || t == ControlType::step ||
-         t == ControlType::reference;
+         t == ControlType::reference || t == ControlType::compare_all;
 }
 
 namespace {
@@ -287,6 +289,7 @@ Result apply_control(const Command& c, FrameSource& src, LoopFlags& flags, bool&
     case ControlType::pause: flags.paused = *c.on; return Result::success();
     case ControlType::reference: flags.reference = *c.on; return Result::success();
     case ControlType::step: step_requested = true; return Result::success();
+    case ControlType::compare_all: flags.compare_requested = true; return Result::success();
     case ControlType::set_scene: return src.load_scene(*c.text);
     case ControlType::set_method: s.method = *c.text; break;
     case ControlType::set_budget: s.budget = *c.levels; break;

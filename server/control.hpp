@@ -28,6 +28,7 @@ struct LoopFlags {
   bool animate = true;
   bool paused = false;
   bool reference = false;
+  bool compare_requested = false;  // compare_all: the render loop takes it (and clears it)
 };
 
 struct Command {
@@ -49,8 +50,8 @@ struct ParseResult {
 
 ParseResult parse_control(const std::string& text);
 
-// True for the types that only change the render loop's flags (LoopFlags, a step), not what a
-// frame looks like: after them the current image need not be rendered again.
+// True for the types that only change the render loop's flags (LoopFlags, a step, a comparison),
+// not what a frame looks like: after them the current image need not be rendered again.
 bool changes_loop_flags_only(ControlType t);
 
 // Applies a validated command (not ack/get_state) to the source and loop flags; on failure the

@@ -7,7 +7,7 @@ namespace tp::server {
 namespace {
 
 // One table for both directions, so a type's wire string is written once.
-constexpr std::array<std::pair<ControlType, std::string_view>, 16> kNames = {{
+constexpr std::array<std::pair<ControlType, std::string_view>, 17> kNames = {{
     {ControlType::set_method, "set_method"},
     {ControlType::set_budget, "set_budget"},
     {ControlType::set_exponent, "set_exponent"},
@@ -22,6 +22,7 @@ constexpr std::array<std::pair<ControlType, std::string_view>, 16> kNames = {{
     {ControlType::step, "step"},
     {ControlType::reference, "reference"},
     {ControlType::specular_only, "specular_only"},
+    {ControlType::compare_all, "compare_all"},
     {ControlType::ack, "ack"},
     {ControlType::get_state, "get_state"},
 }};

@@ -23,6 +23,7 @@ enum class ControlType {
   step,
   reference,
   specular_only,
+  compare_all,
   ack,
   get_state,
 };

@@ -155,13 +155,105 @@ bool RenderLoop::apply_pending() {
     }
     if (outcome.ok()) {
       changed = true;
-      if (!changes_loop_flags_only(j.cmd.type)) dirty_ = true;
+      if (!changes_loop_flags_only(j.cmd.type)) {
+        dirty_ = true;
+        abandon_compare("the settings changed");
+      }
       if (flags_.reference && !ref_before) offer_reference();
     }
     j.done(outcome);
   }
   if (changed) publish_state();
+  if (flags_.compare_requested) {
+    flags_.compare_requested = false;
+    start_compare();
+  }
   return changed;
+}
+
+void RenderLoop::start_compare() {
+  CompareJob job;
+  job.rotation = last_ ? last_->rotation : rotation_;
+  for (const MethodEntry& m : src_->methods()) job.methods.push_back(m.name);
+  compare_ = std::move(job);
+  if (compare_->methods.empty()) return abandon_compare("the source has no methods");
+  publish_compare_progress(nullptr);
+}
+
+void RenderLoop::abandon_compare(const std::string& why) {
+  if (!compare_) return;
+  json j = {{"type", "compare_progress"},
+            {"done", compare_->rows.size()},
+            {"total", compare_->methods.size()},
+            {"aborted", why}};
+  compare_.reset();
+  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), false);
+}
+
+// One step: the reference first, then one method, with the stream's settings restored after it.
+void RenderLoop::compare_step() {
+  CompareJob& c = *compare_;
+  if (!c.reference) {
+    c.reference = src_->reference_task(c.rotation)();
+    return;
+  }
+  const ViewSettings saved = src_->settings();
+  ViewSettings s = saved;
+  s.method = c.methods[c.rows.size()];
+  CompareRow row{s.method, {}, 0, {}};
+  if (Result r = src_->apply(s); r.ok()) {
+    for (int k = 0; k < kCompareRenders; ++k) {
+      RenderedFrame f = src_->render(c.rotation);
+      if (k == 0 || f.render_ms < row.ms) row.ms = f.render_ms;
+      if (k == 0) row.error = compare_images(f.image, *c.reference);
+    }
+  } else {
+    row.fault = r.message();
+  }
+  if (Result back = src_->apply(saved); !back.ok()) dirty_ = true;
+  c.rows.push_back(std::move(row));
+  if (c.rows.size() < c.methods.size()) {
+    publish_compare_progress(c.rows.back().method.c_str());
+    return;
+  }
+  publish_comparison();
+  compare_.reset();
+}
+
+void RenderLoop::publish_compare_progress(const char* method) {
+  json j = {{"type", "compare_progress"},
+            {"done", compare_->rows.size()},
+            {"total", compare_->methods.size()}};
+  if (method != nullptr) j["method"] = method;
+  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), true);
+}
+
+void RenderLoop::publish_comparison() {
+  const CompareJob& c = *compare_;
+  double gouraud_ms = 0;
+  for (const CompareRow& r : c.rows)
+    if (r.method == "gouraud" && r.fault.empty()) gouraud_ms = r.ms;
+  json rows = json::array();
+  for (const CompareRow& r : c.rows) {
+    json row = {{"method", r.method}};
+    if (!r.fault.empty()) {
+      row["error"] = r.fault;
+    } else {
+      row.update({{"correctness", r.error.correctness},
+                  {"mean_levels", r.error.mean_levels},
+                  {"max_levels", r.error.max_levels},
+                  {"psnr", r.error.psnr},
+                  {"pixels", r.error.pixels},
+                  {"ms", r.ms},
+                  {"time_ratio", gouraud_ms > 0 ? json(r.ms / gouraud_ms) : json(nullptr)}});
+    }
+    rows.push_back(std::move(row));
+  }
+  const ViewSettings& s = src_->settings();
+  json j = {{"type", "comparison"},   {"scene", s.scene},       {"width", s.width},
+            {"height", s.height},     {"rotation", c.rotation}, {"renders", kCompareRenders},
+            {"rows", std::move(rows)}};
+  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), false);
 }
 
 void RenderLoop::render_and_publish(double rotation) {
@@ -207,6 +299,10 @@ void RenderLoop::run() {
     const auto now = Clock::now();
     const double dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
     last = now;
+    if (!render && compare_) {
+      compare_step();
+      continue;
+    }
     if (!render) {
       std::unique_lock lk(m_);
       cv_.wait_for(lk, std::chrono::milliseconds(100), [&] { return !running_ || !jobs_.empty(); });
@@ -219,6 +315,7 @@ void RenderLoop::run() {
     dirty_ = false;
     const auto t0 = Clock::now();
     render_and_publish(rotation_);
+    if (compare_) compare_step();
     ++window_frames;
     const auto t1 = Clock::now();
     {

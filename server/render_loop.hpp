@@ -66,6 +66,28 @@ class RenderLoop {
     std::uint32_t frame_id;
     Image device;
   };
+  // "compare all methods" (docs/SERVER.md): the frame on screen when it was asked for, rendered
+  // with every registered method against one double reference, one method per loop iteration so
+  // that the stream goes on between them; a settings change abandons it.
+  struct CompareRow {
+    std::string method;
+    ErrorStats error;
+    double ms = 0;      // the fastest of kCompareRenders renders of the frame
+    std::string fault;  // set when the source refused the method
+  };
+  struct CompareJob {
+    double rotation = 0;
+    std::vector<std::string> methods;
+    std::optional<Image> reference;
+    std::vector<CompareRow> rows;
+  };
+  static constexpr int kCompareRenders = 3;
+  void start_compare();
+  void compare_step();
+  void abandon_compare(const std::string& why);
+  void publish_compare_progress(const char* method);
+  void publish_comparison();
+
   void run();
   std::optional<Job> next_job();  // the oldest queued command, if any
   bool apply_pending();           // true if anything changed
@@ -91,6 +113,7 @@ class RenderLoop {
   std::uint64_t last_checksum_ = 0;
   int last_w_ = 0, last_h_ = 0;
   std::optional<LastFrame> last_;  // the last published device frame, for a late reference request
+  std::optional<CompareJob> compare_;
   // Stats (under m_).
   double fps_ = 0, render_ms_ = 0, loop_ms_ = 0;
   std::uint64_t frames_rendered_ = 0, frames_published_ = 0;

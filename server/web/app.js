@@ -7,6 +7,7 @@ const $ = (id) => document.getElementById(id);
 const tp = (window.tp = {
   connected: false, painted: null, framesPainted: 0, refsPainted: 0,
   state: null, stats: null, replies: [], send: (m) => send(m),
+  comparison: null, compareProgress: null,
 });
 
 // FNV-1a 64 in two 32-bit halves (the prime is 2^40 + 0x1b3), over RGB only.
@@ -47,12 +48,23 @@ function parseHeader(buf) {
   return h;
 }
 
-let zoom = 1;
+// The views' scale: a chosen integer zoom, or "fit" (the default): the largest scale at which the
+// device, reference and difference views stand side by side in the window's width — whole
+// multiples when they fit at native size or more, a fraction below (smoothing stays off).
+let zoomChoice = 'fit';
+let zoom = 1; // the scale in use, CSS pixels per image pixel
+const kViewGap = 10; // #views' gap (style.css)
+function viewScale(w) {
+  if (zoomChoice !== 'fit') return Number(zoomChoice);
+  const fit = ($('views').clientWidth - 2 * kViewGap - 6) / (3 * w);
+  return fit >= 1 ? Math.min(8, Math.floor(fit)) : Math.max(0.1, fit);
+}
 const devices = new Map(); // frame id -> device pixels (RGB), the last few, for pairing
 let lastDevice = null, lastRef = null;
 
 function sizeCanvas(cv, w, h) {
   if (cv.width !== w || cv.height !== h) { cv.width = w; cv.height = h; }
+  if (cv.id === 'device') zoom = viewScale(w);
   cv.style.width = w * zoom + 'px';
   cv.style.height = h * zoom + 'px';
 }
@@ -171,6 +183,93 @@ function connect() {
   };
 }
 
+// "compare all methods": the server renders the frame with every method against one reference
+// (docs/SERVER.md); the page shows the table and the chart of run time (log scale) against colour
+// correctness, the Pareto front dashed; a point or a row selects its method.
+function showCompareProgress(m) {
+  tp.compareProgress = m;
+  $('compare-progress').textContent = m.aborted ? `stopped: ${m.aborted} (${m.done} of ${m.total})`
+    : m.done === 0 ? `reference… (${m.total} methods)` : `${m.done} / ${m.total} (${m.method})`;
+}
+
+function niceBelow(v) { const e = 10 ** Math.floor(Math.log10(v)); return Math.max(...[1, 2, 5].map((k) => k * e).filter((x) => x <= v)); }
+function niceAbove(v) { const e = 10 ** Math.floor(Math.log10(v)); return Math.min(...[1, 2, 5, 10].map((k) => k * e).filter((x) => x >= v)); }
+
+function comparisonChart(rows) {
+  const W = 640, H = 360, L = 62, R = 20, T = 16, B = 44, pw = W - L - R, ph = H - T - B;
+  const pts = rows.filter((r) => r.time_ratio != null && r.correctness != null);
+  if (pts.length === 0) return '<svg id="chart" width="640" height="40"><text x="10" y="24" fill="#ddd">no timed method</text></svg>';
+  const xs = pts.map((r) => r.time_ratio), ys = pts.map((r) => r.correctness);
+  const lo = niceBelow(Math.min(...xs) / 1.15), hi = niceAbove(Math.max(...xs) * 1.15);
+  const step = niceAbove((Math.max(...ys) - Math.min(...ys)) / 5 || 0.01);
+  const y0 = Math.floor(Math.min(...ys) / step) * step, y1 = Math.ceil(Math.max(...ys) / step) * step + step / 2;
+  const X = (t) => L + pw * (Math.log10(t) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo));
+  const Y = (v) => T + ph * (y1 - v) / (y1 - y0);
+  const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+  const out = [`<svg id="chart" xmlns="http://www.w3.org/2000/svg" width="${W}" height="${H}" viewBox="0 0 ${W} ${H}" font-size="11">`,
+    `<rect width="${W}" height="${H}" fill="#111"/>`];
+  for (let d = 10 ** Math.floor(Math.log10(lo)); d <= hi * 1.0001; d *= 10)
+    for (const k of [1, 2, 5]) {
+      const t = d * k;
+      if (t < lo * 0.999 || t > hi * 1.001) continue;
+      out.push(`<line x1="${X(t)}" y1="${T}" x2="${X(t)}" y2="${T + ph}" stroke="${k === 1 ? '#555' : '#333'}"/>`,
+        `<text x="${X(t)}" y="${T + ph + 14}" fill="#aaa" text-anchor="middle">${t}</text>`);
+    }
+  const digits = Math.max(0, -Math.floor(Math.log10(step)));
+  for (let v = y0; v <= y1 + step * 1e-6; v += step)
+    out.push(`<line x1="${L}" y1="${Y(v)}" x2="${L + pw}" y2="${Y(v)}" stroke="#333"/>`,
+      `<text x="${L - 5}" y="${Y(v) + 4}" fill="#aaa" text-anchor="end">${v.toFixed(digits)}</text>`);
+  out.push(`<rect x="${L}" y="${T}" width="${pw}" height="${ph}" fill="none" stroke="#777"/>`,
+    `<text x="${L + pw / 2}" y="${H - 8}" fill="#aaa" text-anchor="middle">time / Gouraud (log scale, this frame)</text>`,
+    `<text transform="translate(12 ${T + ph / 2}) rotate(-90)" fill="#aaa" text-anchor="middle">colour correctness</text>`);
+  // The Pareto front: no other method both at least as fast and at least as correct, and better in one.
+  const front = pts.filter((p) => !pts.some((q) => q !== p && q.time_ratio <= p.time_ratio && q.correctness >= p.correctness &&
+    (q.time_ratio < p.time_ratio || q.correctness > p.correctness))).sort((a, b) => a.time_ratio - b.time_ratio);
+  if (front.length > 1)
+    out.push(`<polyline points="${front.map((p) => `${X(p.time_ratio)},${Y(p.correctness)}`).join(' ')}" fill="none" stroke="#3b8" stroke-width="2" stroke-dasharray="5 3"/>`);
+  const current = tp.state ? tp.state.method : '';
+  // Each label at the first place round its point that overlaps no point and no label placed
+  // (scripts/charts.py's rule).
+  const marks = pts.map((p) => [X(p.time_ratio), Y(p.correctness)]), boxes = [];
+  const free = (bx, by, w, h) => bx >= L + 2 && bx + w <= W - 2 && by >= T && by + h <= T + ph &&
+    !marks.some(([mx, my]) => bx - 5 < mx && mx < bx + w + 5 && by - 5 < my && my < by + h + 5) &&
+    !boxes.some(([ox, oy, ow, oh]) => bx < ox + ow && ox < bx + w && by < oy + oh && oy < by + h);
+  for (const p of [...pts].sort((a, b) => Y(a.correctness) - Y(b.correctness))) {
+    const x = X(p.time_ratio), y = Y(p.correctness), on = front.includes(p);
+    const w = 6.3 * p.method.length, h = 11;
+    const tries = [[x + 7, y + 4], [x - 7 - w, y + 4], [x - w / 2, y - 8], [x - w / 2, y + 16]];
+    for (let k = 1; k < 8; ++k) tries.push([x + 7, y + 4 + 12 * k], [x + 7, y + 4 - 12 * k]);
+    const [lx, ly] = tries.find(([tx, ty]) => free(tx, ty - h + 2, w, h)) ?? tries[0];
+    boxes.push([lx, ly - h + 2, w, h]);
+    const lead = Math.hypot(lx - x, ly - 4 - y) > 20
+      ? `<line x1="${x}" y1="${y}" x2="${lx > x ? lx : lx + w}" y2="${ly - 4}" stroke="#666"/>` : '';
+    out.push(`<g class="pt" data-method="${esc(p.method)}" data-correctness="${p.correctness}" data-time="${p.time_ratio}">` +
+      `<title>${esc(p.method)}: colour correctness ${p.correctness.toFixed(5)}, ${p.time_ratio.toFixed(2)}× Gouraud, max ${p.max_levels} levels</title>` +
+      `<circle cx="${x}" cy="${y}" r="${p.method === current ? 6 : 4}" fill="${on ? '#3b8' : '#58c'}" stroke="${p.method === current ? '#fff' : 'none'}"/>` +
+      `${lead}<text x="${lx}" y="${ly}" fill="#ddd">${esc(p.method)}</text></g>`);
+  }
+  out.push('</svg>');
+  return out.join('');
+}
+
+function showComparison(m) {
+  tp.comparison = m;
+  $('compare-progress').textContent = `${m.rows.length} methods, ${m.scene} ${m.width}×${m.height}`;
+  const rows = m.rows.map((r) => r.error
+    ? `<tr data-method="${r.method}"><td>${r.method}</td><td colspan="4">${r.error}</td></tr>`
+    : `<tr data-method="${r.method}"><td>${r.method}</td><td>${r.correctness.toFixed(5)}</td><td>${r.max_levels}</td>` +
+      `<td>${r.ms.toFixed(2)}</td><td>${r.time_ratio == null ? '—' : r.time_ratio.toFixed(2)}</td></tr>`).join('');
+  $('compare-table').innerHTML = '<thead><tr><th>method</th><th>colour correctness</th><th>max levels</th><th>ms</th><th>time / Gouraud</th></tr></thead>' +
+    `<tbody>${rows}</tbody>`;
+  $('chart-box').innerHTML = comparisonChart(m.rows);
+  const pick = (e) => {
+    const el = e.target.closest('[data-method]');
+    if (el) send({ type: 'set_method', method: el.dataset.method });
+  };
+  $('chart-box').onclick = pick;
+  $('compare-table').onclick = pick;
+}
+
 function log(text) {
   const l = $('log');
   l.textContent = (text + '\n' + l.textContent).slice(0, 4000);
@@ -179,6 +278,8 @@ function log(text) {
 function onText(m) {
   if (m.type === 'state') return applyState(m);
   if (m.type === 'stats') return applyStats(m);
+  if (m.type === 'compare_progress') return showCompareProgress(m);
+  if (m.type === 'comparison') return showComparison(m);
   if (m.type === 'ok' || m.type === 'error') {
     tp.replies.push(m);
     if (tp.replies.length > 100) tp.replies.shift();
@@ -298,11 +399,13 @@ function wire() {
   $('apply-mat').onclick = () => send({ type: 'set_material', ka: Number($('ka').value), kd: Number($('kd').value),
     ks: Number($('ks').value), color: fromHex($('color').value) });
   $('add-light').onclick = () => send({ type: 'add_light', kind: 'directional', vector: [-1, 1, 1], color: [1, 1, 1] });
-  $('zoom').onchange = (e) => {
-    zoom = Number(e.target.value);
+  const rescale = () => {
     for (const id of ['device', 'ref', 'heat']) sizeCanvas($(id), $(id).width, $(id).height);
     redrawProbe();
   };
+  $('zoom').onchange = (e) => { zoomChoice = e.target.value; rescale(); };
+  $('compare-all').onclick = () => send({ type: 'compare_all' });
+  window.addEventListener('resize', () => { if (zoomChoice === 'fit') rescale(); });
   $('row').onchange = () => redrawProbe();
   for (const id of ['device', 'ref', 'heat']) {
     $(id).onclick = (e) => {

@@ -188,6 +188,48 @@ try {
   check(full.painted.checksum === full.stats.frame.checksum && dark < light,
         `specular only is darker than the full frame (${dark} < ${light})`);
 
+  // 3d. Compare all methods: the server renders this frame with every registered method; the page
+  // shows one point per method with the server's numbers, and a click on a point selects it.
+  await page.click('#compare-all');
+  await page.waitForFunction(() => window.tp.comparison, null, { timeout: 180000 });
+  const cmp = await page.evaluate(() => window.tp.comparison);
+  const names = full.state.methods;
+  check(cmp.rows.length === names.length && cmp.rows.every((r, i) => r.method === names[i] && !r.error),
+        `compare all methods: ${cmp.rows.length} rows, one per registered method, none refused`);
+  const gouraudRow = cmp.rows.find((r) => r.method === 'gouraud');
+  check(gouraudRow && gouraudRow.time_ratio === 1 && cmp.rows.every((r) => r.correctness > 0.5 && r.correctness <= 1),
+        'the times are ratios to Gouraud, the colour correctness of every method in (0.5, 1]');
+  const pts = await page.evaluate(() => [...document.querySelectorAll('#chart .pt')].map((g) =>
+    ({ method: g.dataset.method, c: Number(g.dataset.correctness), t: Number(g.dataset.time) })));
+  const byName = new Map(cmp.rows.map((r) => [r.method, r]));
+  check(pts.length === names.length && new Set(pts.map((p) => p.method)).size === names.length &&
+        pts.every((p) => byName.has(p.method) && byName.get(p.method).correctness === p.c &&
+                         byName.get(p.method).time_ratio === p.t),
+        `the chart has one point per registered method (${pts.length}) at the server's numbers`);
+  const shot = await page.locator('#chart').screenshot();
+  check(shot.length > 4000, `the chart's screenshot is not empty (${shot.length} bytes of PNG)`);
+  const pickMethod = names.includes('quadratic') ? 'quadratic' : names[names.length - 1];
+  await page.dispatchEvent(`#chart .pt[data-method="${pickMethod}"] circle`, 'click');
+  await page.waitForFunction((m) => window.tp.state.method === m, pickMethod, { timeout: 10000 });
+  check(true, `a click on ${pickMethod}'s point selected it`);
+
+  // 3e. Side by side: at 640x480 in a 1600-pixel-wide window the device, reference and difference
+  // views stand in one row ("fit" zoom), none overlapping, all inside the window.
+  await page.setViewportSize({ width: 1600, height: 900 });
+  await page.fill('#width', '640');
+  await page.fill('#height', '480');
+  await page.click('#apply-size');
+  await page.waitForFunction(() => window.tp.state.width === 640 && document.getElementById('heat').width === 640 &&
+                             document.getElementById('device').width === 640, null, { timeout: 60000 });
+  const boxes = await page.evaluate(() => ['device', 'ref', 'heat'].map((id) => {
+    const r = document.getElementById(id).getBoundingClientRect();
+    return { top: r.top, left: r.left, right: r.right, width: r.width };
+  }));
+  const row = boxes.every((b) => Math.abs(b.top - boxes[0].top) < 1) &&
+      boxes[0].right <= boxes[1].left && boxes[1].right <= boxes[2].left && boxes[2].right <= 1600 &&
+      boxes.every((b) => b.width > 300);
+  check(row, `side by side at 640x480 in 1600 px: ${boxes.map((b) => `${Math.round(b.left)}-${Math.round(b.right)}@${Math.round(b.top)}`).join(', ')}`);
+
   // 4. Restart the server on the same port: the page reconnects and paints again.
   const port = server.port;
   const before = await page.evaluate(() => window.tp.framesPainted);

@@ -111,6 +111,7 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"animate\",\"on\":\"yes\"}", "true or false"},
       {"{\"type\":\"specular_only\"}", "missing 'on'"},
       {"{\"type\":\"specular_only\",\"on\":1}", "true or false"},
+      {"{\"type\":\"compare_all\",\"on\":true}", "unknown field 'on'"},
       {"{\"type\":\"ack\",\"id\":-3,\"kind\":\"device\"}", "'id' must be an unsigned integer"},
   };
   for (const auto& [msg, why] : cases) {
@@ -170,6 +171,9 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_TRUE(src.settings().use_ab);
   EXPECT_EQ(run("{\"type\":\"specular_only\",\"on\":true}"), "");
   EXPECT_TRUE(src.settings().specular_only);
+  EXPECT_EQ(run("{\"type\":\"compare_all\"}"), "");
+  EXPECT_TRUE(flags.compare_requested);
+  EXPECT_TRUE(changes_loop_flags_only(ControlType::compare_all));
   EXPECT_EQ(run("{\"type\":\"pause\",\"on\":true}"), "");
   EXPECT_TRUE(flags.paused);
   EXPECT_EQ(run("{\"type\":\"step\"}"), "");
