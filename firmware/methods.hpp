@@ -343,7 +343,7 @@ class GouraudSubdividedMethod final : public ShadingMethod {
     bool degenerate = false;  // area2 <= 0 after rounding: its colour is constant
     std::int64_t constant[3];
   };
-  std::int64_t part_start(int k, std::int32_t x, std::int32_t y, int ch) const;
+  void part_start(int k, std::int32_t x, std::int32_t y, std::int64_t c[3]) const;
 
   // Corners 0, 1, 2, then the middle, whose edges m01→m12, m12→m20 and m20→m01 are the inner
   // edges: a pixel on the far side of one (its edge function negative) is in corner 1, 2 or 0.

@@ -55,13 +55,17 @@ bool GouraudSubdividedMethod::setup(const Triangle& tri, const ShadeContext& ctx
   return true;
 }
 
-// Channel ch of part k at pixel (x, y), exactly, with ScreenPlane::kStepFrac more fraction bits.
-std::int64_t GouraudSubdividedMethod::part_start(int k, std::int32_t x, std::int32_t y,
-                                                 int ch) const {
+// The three channels of part k at pixel (x, y), exactly, with ScreenPlane::kStepFrac more
+// fraction bits.
+void GouraudSubdividedMethod::part_start(int k, std::int32_t x, std::int32_t y,
+                                         std::int64_t c[3]) const {
   const Part& p = part_[k];
-  if (p.degenerate) return p.constant[ch] << ScreenPlane::kStepFrac;
+  if (p.degenerate) {
+    for (int ch = 0; ch < 3; ++ch) c[ch] = p.constant[ch] << ScreenPlane::kStepFrac;
+    return;
+  }
   const Lambdas lam = lambdas_at(p.tri, 16 * std::int64_t{x} + 8, 16 * std::int64_t{y} + 8);
-  return p.plane[ch].at(lam) << ScreenPlane::kStepFrac;
+  for (int ch = 0; ch < 3; ++ch) c[ch] = p.plane[ch].at(lam) << ScreenPlane::kStepFrac;
 }
 
 void GouraudSubdividedMethod::shade_span(const Span& s, Rgb8* out) {
@@ -84,7 +88,7 @@ void GouraudSubdividedMethod::shade_span(const Span& s, Rgb8* out) {
     if (k == current && part_[k].stepped) {
       for (int ch = 0; ch < 3; ++ch) c[ch] += part_[k].step[ch];  // Gouraud: one addition
     } else {
-      for (int ch = 0; ch < 3; ++ch) c[ch] = part_start(k, x, s.y, ch);
+      part_start(k, x, s.y, c);
       current = k;
     }
     const auto level = [&](int ch) {

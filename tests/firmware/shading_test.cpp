@@ -85,6 +85,11 @@ struct Diff {
   long off = 0;  // pixels with any channel off by >= 1 level
 };
 
+// Twice the signed area of triangle (o, a, b): the edge function in double.
+double cross2(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
 // The six points of Vlasic's quadratic triangle (vertices, then the midpoints of edges 0-1, 1-2
 // and 2-0) and their clamped colours, in double.
 constexpr int kEdges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
@@ -124,9 +129,6 @@ dvec3 subdivided(const Expected& e, const Scene& s, glm::dvec2 q, bool snap) {
   }
   const std::array<dvec3, 6> c = six_colours(e, s);
   constexpr int kParts[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
-  const auto cross2 = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-  };
   for (const auto& part : kParts) {
     const glm::dvec2 a = p[part[0]], b = p[part[1]], d = p[part[2]];
     const double area = cross2(a, b, d);
@@ -165,9 +167,6 @@ Diff compare(Method method, const Scene& s, const glm::dmat4& mv, const glm::dma
     e.screen[i] = {(c.x / c.w + 1) / 2 * W, (1 - c.y / c.w) / 2 * H};
     if (snap) e.screen[i] = glm::round(e.screen[i] * 16.0) / 16.0;
   }
-  const auto cross2 = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-  };
   const double area = cross2(e.screen[0], e.screen[1], e.screen[2]);
   dvec3 vc[3];
   for (int i = 0; i < 3; ++i) vc[i] = clamp01(blinn_phong(s, e.eye[i], e.normal[i]));
