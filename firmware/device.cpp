@@ -670,10 +670,30 @@ Error Device::draw(const DrawCmd& cmd) {
     cache[i].v.normal.x = q1_30::from_raw(kNormalPending);
     if (levels != nullptr) levels[i].c[0] = -1;
   }
+  if (method_slot(state_.method).object_centre) set_object_centre(idx, cmd.count);
   PixelWriter writer(*this);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) draw_triangle(idx + t, levels, writer);
   writer.flush_counters();
   return ok();
+}
+
+// The centre of the eye-space bounding box of the vertices that the draw's indices name (each
+// coordinate (lo + hi) / 2 rounded toward -inf).
+void Device::set_object_centre(const std::uint32_t* idx, std::uint32_t count) {
+  const CachedVertex* cache = region<CachedVertex>(state_.off_cache);
+  std::int32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const Vec3q16& p = cache[idx[i]].v.eye;
+    const std::int32_t c[3] = {p.x.raw(), p.y.raw(), p.z.raw()};
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = i == 0 || c[k] < lo[k] ? c[k] : lo[k];
+      hi[k] = i == 0 || c[k] > hi[k] ? c[k] : hi[k];
+    }
+  }
+  const auto mid = [&](int k) {
+    return q15_16::from_raw(static_cast<std::int32_t>((std::int64_t{lo[k]} + hi[k]) >> 1));
+  };
+  state_.shading.object_centre = Vec3q16{mid(0), mid(1), mid(2)};
 }
 
 const Vec3u& Device::vertex_normal(std::uint32_t id) {

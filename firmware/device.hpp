@@ -161,6 +161,7 @@ class Device {
   T* region(std::size_t off) const {
     return reinterpret_cast<T*>(mem_.data() + off);
   }
+  void set_object_centre(const std::uint32_t* idx, std::uint32_t count);
   void draw_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer);
   // A triangle that crosses a clip plane: clipped, projected and drawn as a fan.
   void draw_crossing_triangle(const std::uint32_t id[3], VertexLevels* levels, PixelWriter& writer);

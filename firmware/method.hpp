@@ -99,6 +99,10 @@ struct ShadeContext {
   // of the shading state across triangles and draws compares this, not the state's bytes
   // (64 bits: it does not wrap).
   std::uint64_t revision = 0;
+  // The centre of the current draw's bounding box in eye space, set by the draw for the methods
+  // that ask for it (MethodSlot::object_centre: envmap, whose map holds a point light as the
+  // direction to it from there); not kept up to date for the others.
+  Vec3q16 object_centre;
 };
 
 // A span whose colours are linear in x, for the pipeline to compute in its write loop: pixel k of

@@ -8,6 +8,7 @@
 #include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
 #include "firmware/point_shader.hpp"
+#include "firmware/texture.hpp"
 
 namespace tp::fw {
 
@@ -348,6 +349,88 @@ class GouraudSubdividedMethod final : public ShadingMethod {
   // Corners 0, 1, 2, then the middle, whose edges m01→m12, m12→m20 and m20→m01 are the inner
   // edges: a pixel on the far side of one (its edge function negative) is in corner 1, 2 or 0.
   Part part_[4];
+};
+
+// 10. Vlasic's environment map (shade_envmap.cpp; Vlasic 2002, section 5.1): diffuse and ambient
+//     as Gouraud; the specular part from one RGB sphere map indexed by the reflected view vector
+//     W = 2 (N·E) N - E (his eqs. 5.1-5.3), computed at the vertices and interpolated in screen
+//     space as Gouraud's colours. The texture holds, summed over the lights, ks Il_c times
+//     Blinn's highlight written as a function of W ((1 + W·L) / 2)^(n/2) (texture.hpp); it is
+//     built in the method's region when the shading state changes. A sphere map cannot hold a
+//     point light: its direction is taken from the centre of the draw's bounding box
+//     (ShadeContext::object_centre), and the map rebuilt when that centre moves.
+class EnvmapMethod final : public ShadingMethod {
+ public:
+  static constexpr bool kLightsVertices = true;     // the Gouraud part's vertex colours
+  static constexpr bool kNeedsObjectCentre = true;  // for its point lights
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+ private:
+  void refresh(const ShadeContext& ctx);
+
+  GouraudMethod gouraud_;     // the diffuse and ambient colour
+  ShadeContext diffuse_ctx_;  // the shading state with ks = 0, for gouraud_
+  const ShadeContext* ctx_ = nullptr;
+  std::uint64_t revision_ = 0;
+  bool point_lights_ = false;
+  Vec3q16 centre_;  // the point lights' origin the map was built for
+  bool specular_ = false;
+  SteppedBarycentrics bary_;   // screen-linear
+  LinearCoordinate coord_[2];  // the sphere map's (u, v)
+  std::uint16_t texture_[texture_texels(kTextureLog2Cells) * 3] = {};
+};
+
+// 11. Vlasic's Blinn map and quadratic Blinn map (shade_blinn_map.cpp; sections 5.2 and 5.3):
+//     per light, the normal's coordinates in the plane perpendicular to L (diffuse) and to H
+//     (specular), his eqs. 5.6 and 5.7, index Blinn's two textures (eqs. 5.4 and 5.5); the
+//     colour is ka O + sum_lights Il (kd O D + ks S). The plane's u axis is the camera's up
+//     vector projected onto it, or, for a triangle where the plane's vector comes within 25.8°
+//     of up (the singularity), the camera's right vector. A normal facing away from the
+//     plane's vector (N·L < 0, N·H < 0) is placed outside the unit disk, at radius 2 - r, where
+//     the textures are 0. blinn-map computes the coordinates at the vertices and interpolates
+//     them in screen space; quadratic (quadratic-blinn-map) at the six points of Vlasic's
+//     quadratic shading, through his eq. 4.2, at perspective-correct (s, t). The textures
+//     depend on n alone (the colours are applied per pixel): one pair for every light.
+class BlinnMapMethod final : public ShadingMethod {
+ public:
+  explicit BlinnMapMethod(bool quadratic) : quadratic_(quadratic) {}
+  bool setup(const Triangle& tri, const ShadeContext& ctx) override;
+  void shade_span(const Span& s, Rgb8* out) override;
+
+  // A unit normal's Blinn coordinates (u, v) in the plane perpendicular to unit x (Vlasic
+  // eq. 5.6 / 5.7 with u = axis_u · N, v = (x × axis_u) · N), Q.29, with a normal facing away
+  // from x moved outside the disk.
+  struct Coordinates {
+    std::int64_t u = 0, v = 0;
+  };
+  static Coordinates coordinates(const Vec3u& n, const Vec3u& x, bool up_axis);
+
+ private:
+  struct LightTerm {
+    std::int64_t diffuse[3];   // Il_c kd O_c, Q.30
+    std::int64_t specular[3];  // Il_c ks, Q.30
+    // The four coordinates u_D, v_D, u_S, v_S: blinn-map's interpolated in screen space (at[]
+    // the current pixel's, Q.40); the quadratic's eq. 4.2 coefficients (Q.29 values).
+    LinearCoordinate linear[4];
+    std::int64_t at[4];
+    QuadraticMethod::Coefficients quadratic[4];
+  };
+  void refresh(const ShadeContext& ctx);
+
+  bool quadratic_ = false;
+  const ShadeContext* ctx_ = nullptr;
+  std::uint64_t revision_ = 0;
+  std::uint32_t built_n_ = 0;  // the specular texture's exponent, 0 before the first
+  bool diffuse_built_ = false;
+  std::int64_t ambient_[3] = {0, 0, 0};  // ka O_c, Q.30
+  SteppedBarycentrics bary_;
+  Counters* counters_ = nullptr;
+  int lights_ = 0;
+  bool diffuse_ = false, specular_ = false;
+  LightTerm term_[kMaxLights];
+  std::uint16_t diffuse_texture_[texture_texels(kTextureLog2Cells)] = {};
+  std::uint16_t specular_texture_[texture_texels(kTextureLog2Cells)] = {};
 };
 
 }  // namespace tp::fw

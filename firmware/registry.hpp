@@ -39,11 +39,13 @@ struct MethodCapabilities {
 
 // Where a method's state lives: its bytes in the block's method region, and how to construct it
 // there (device.cpp). lights_vertices: the method gets the draw's lit-vertex cache
-// (VertexLevels per vertex, Triangle::levels).
+// (VertexLevels per vertex, Triangle::levels); object_centre: the draw sets
+// ShadeContext::object_centre for it.
 struct MethodSlot {
   std::size_t bytes = 0;
   ShadingMethod* (*construct)(void* where) = nullptr;
   bool lights_vertices = false;
+  bool object_centre = false;  // the draw sets ShadeContext::object_centre
 };
 
 namespace detail {
@@ -65,7 +67,13 @@ constexpr MethodSlot slot_of() {
     else
       return false;
   }();
-  return MethodSlot{sizeof(T), detail::construct_at<T, kArgs...>, lights};
+  constexpr bool centre = [] {
+    if constexpr (requires { T::kNeedsObjectCentre; })
+      return T::kNeedsObjectCentre;
+    else
+      return false;
+  }();
+  return MethodSlot{sizeof(T), detail::construct_at<T, kArgs...>, lights, centre};
 }
 
 struct MethodInfo {
@@ -153,6 +161,27 @@ inline constexpr MethodInfo kMethodTable[] = {
      "(the same image in orthographic views)",
      {kExact, kExact, kExact},
      slot_of<QuadraticMethod, true>()},
+    {Method::kEnvmap,
+     "envmap",
+     "Vlasic's sphere environment map: diffuse and ambient as Gouraud; the specular part from "
+     "one RGB texture of all lights' highlights, indexed by the reflected view vector at the "
+     "vertices, coordinates interpolated in screen space; a point light's direction from the "
+     "object's centre",
+     {kApprox, kApprox, kExact},
+     slot_of<EnvmapMethod>()},
+    {Method::kBlinnMap,
+     "blinn-map",
+     "Vlasic's Blinn map: per light, the normal's coordinates in the planes perpendicular to L "
+     "and H (u axis from the camera's up vector) at the vertices, interpolated in screen space, "
+     "index a diffuse and a specular texture",
+     {kApprox, kApprox, kExact},
+     slot_of<BlinnMapMethod, false>()},
+    {Method::kQuadraticBlinnMap,
+     "quadratic-blinn-map",
+     "blinn-map with the coordinates at the vertices and edge midpoints, interpolated "
+     "quadratically (Vlasic eq. 4.2) at perspective-correct (s, t)",
+     {kApprox, kApprox, kExact},
+     slot_of<BlinnMapMethod, true>()},
     {Method::kKuijkBlake,
      "kb",
      "Kuijk-Blake one-vector angular interpolation (eq. 4); L and H at the vertices, slerped",

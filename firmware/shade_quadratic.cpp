@@ -9,11 +9,6 @@ namespace {
 constexpr std::int64_t kOne40 = std::int64_t{1} << 40;
 constexpr int kF = QuadraticMethod::kForwardFrac;
 
-// The six samples in eq. 4.2's order, round the triangle from vertex 0: r0 vertex 0, r1 the
-// midpoint of 0-1, r2 vertex 1, r3 the midpoint of 1-2, r4 vertex 2, r5 the midpoint of 2-0
-// (six_points.hpp numbers the vertices 0-2 and the midpoints 3-5).
-constexpr int kSample[6] = {0, 3, 1, 4, 2, 5};
-
 std::int64_t magnitude(std::int64_t v) { return v < 0 ? -v : v; }
 
 // A forward-differenced value's output level: round(255 r) clamped, from Q.52 (|r| < 2^5).
@@ -52,7 +47,7 @@ bool QuadraticMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   six_levels(tri, ctx, lit);
   for (int ch = 0; ch < 3; ++ch) {
     std::int64_t r[6];
-    for (int k = 0; k < 6; ++k) r[k] = lit[kSample[k]].c[ch];
+    for (int k = 0; k < 6; ++k) r[k] = lit[kEq42Order[k]].c[ch];
     coef_[ch] = coefficients(r);
   }
   bary_.setup(tri, screen_linear_);

@@ -11,6 +11,11 @@ namespace tp::fw {
 // Points 0, 1, 2 are the vertices; 3, 4, 5 the midpoints of edges 0-1, 1-2 and 2-0.
 inline constexpr int kSixEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
 
+// Vlasic's eq. 4.2 takes its six samples round the triangle from vertex 0: r0 vertex 0, r1 the
+// midpoint of 0-1, r2 vertex 1, r3 the midpoint of 1-2, r4 vertex 2, r5 the midpoint of 2-0.
+// Sample k of eq. 4.2 is point kEq42Order[k] here.
+inline constexpr int kEq42Order[6] = {0, 3, 1, 4, 2, 5};
+
 struct SixPoints {
   Vec3u normal[6];   // the vertices' normals; at a midpoint, the renormalised sum of its edge's
   Vec3q16 point[6];  // eye-space positions; a midpoint's rounded toward −inf

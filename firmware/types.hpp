@@ -57,6 +57,10 @@ enum class Method : std::uint32_t {
   // Gouraud on the triangle cut into four at its edge midpoints (shade_gouraud_subdivided.cpp).
   kGouraudSubdivided = 18,
   kQuadraticScreen = 19,  // quadratic with screen-linear (s, t) under perspective too
+  // 20: unassigned (tests/firmware/command_test.cpp uses it as an id nothing implements).
+  kEnvmap = 21,             // Vlasic's sphere environment map (firmware/shade_envmap.cpp)
+  kBlinnMap = 22,           // Vlasic's Blinn map (firmware/shade_blinn_map.cpp)
+  kQuadraticBlinnMap = 23,  // its coordinates interpolated quadratically (the same file)
 };
 
 enum class LightType : std::uint32_t { kOff = 0, kDirectional = 1, kPoint = 2 };

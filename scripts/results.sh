@@ -36,7 +36,9 @@ perspective-correct normals renormalised per pixel with true per-pixel L and V; 
 same with slerped normals), and frame time as a ratio to Gouraud's measured in the same run
 (methods interleaved round-robin, median of $reps rounds; the frame time is the device's clear +
 draw). Colour correctness is Vlasic's eq. 6.1, over pixels covered in both images; mean/max in
-8-bit levels. The error figures are deterministic (integer device); the times are not: this
+8-bit levels. A method is switched in before each of its timed frames, so the texture methods'
+times include building their textures (docs/DECISIONS.md, "Vlasic's texture methods"). The
+error figures are deterministic (integer device); the times are not: this
 machine is shared, single ratios move by up to ±30 % between runs.
 
 The \`llvmpipe\` rows are the peer a desktop user would pick instead of the device: Mesa's
@@ -52,7 +54,8 @@ Regenerate: \`bash scripts/results.sh --reps $reps\` (it runs
 llvmpipe\`).
 Machine: $(nproc) cores, ${cpu:-unknown CPU}, $(g++ --version | head -1), -O2.
 
-The flat, Gouraud, Phong, Duff and Bishop-Weimer rows are pinned in
+The flat, Gouraud, Phong, Duff, Bishop-Weimer, Brown and Vlasic rows (his texture methods also
+on the multi-light scenes) are pinned in
 \`tests/scenes/test_scene_accuracy.cpp\`; the
 Kuijk-Blake rows in \`tests/kb/test_kb_device.cpp\`; kb-adaptive is checked against kb and
 its own exact evaluation (\`kb-adaptive-exact\`) on every scene in
@@ -99,11 +102,12 @@ EOF
 
 Lights as listed in \`scenes/README.md\` (the base light first). Methods: Gouraud (the
 yardstick), exact fixed-point Phong, Duff, Bishop-Weimer (both forms), Brown, Vlasic's quadratic
-shading and its subdivided-Gouraud comparison, the three Kuijk-Blake evaluations and kb-adaptive.
+shading and its subdivided-Gouraud comparison, his three texture methods (environment map, Blinn
+map, quadratic Blinn map), the three Kuijk-Blake evaluations and kb-adaptive.
 
 EOF
   many=$(mktemp)
-  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3 | tee "$many"
+  "$bin" --reps "$reps" --scenes "$multi" --methods gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-decomposition,kb-exact,kb-adaptive --peer llvmpipe | tail -n +3 | tee "$many"
   python3 scripts/charts.py "$many" --title "2, 4 and 8 lights, eighteen scenes" \
     --out-prefix docs/charts/many-lights >&2
   rm -f "$many"
@@ -231,6 +235,8 @@ for path in sorted(glob.glob(os.path.join(root, 'scenes', '*.json'))):
     print(f"| {name} | {lights} | {shaded:,} | {spec:,} | {100 * share:.1f} % | {c['lights_skipped_triangle']:,} |")
 os.remove(png)
 PYEOF
+  echo
+  bash scripts/vlasic-table.sh
   if [ "$instructions" = 1 ]; then
     cat <<EOF
 
@@ -240,10 +246,10 @@ The steadier cost figure: instructions executed inside \`tp::fw::Device::draw\` 
 vertex cache, clipping, set-up, spans and pixels; the clear is outside), counted by
 callgrind for one frame of each scene, divided by the frame's pixels written (repeatable to the
 instruction on any x86-64 machine with the same compiler). \`bash scripts/instructions.sh
---methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-adaptive\`, $(date +%Y-%m-%d).
+--methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive\`, $(date +%Y-%m-%d).
 
 EOF
-    bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,kb,kb-adaptive
+    bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive
   fi
 } > "$out.tmp"
 mv "$out.tmp" "$out"

@@ -16,7 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build/release
-methods="flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,brown-noskip,gouraud-subdivided,quadratic,quadratic-screen,kb,kb-noskip,kb-decomposition,kb-exact,kb-adaptive,kb-adaptive-noskip,kb-adaptive-exact"
+methods="flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,brown-noskip,gouraud-subdivided,quadratic,quadratic-screen,envmap,blinn-map,quadratic-blinn-map,kb,kb-noskip,kb-decomposition,kb-exact,kb-adaptive,kb-adaptive-noskip,kb-adaptive-exact"
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) build=$2; shift 2 ;;

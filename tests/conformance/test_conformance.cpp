@@ -194,7 +194,9 @@ enum class Sites {
   kSamplesAndPixels,        // exact samples and exact pixels, fits between (kb-adaptive)
   kVertexAndHighlights,     // diffuse at the vertices, highlights per pixel where not culled
   kVertexAndHighlightsAll,  // the same with none culled (brown-noskip)
-  kSixSamples               // the vertices (shared ones lit once) and three midpoints per triangle
+  kSixSamples,              // the vertices (shared ones lit once) and three midpoints per triangle
+  kVertexAndMap,            // diffuse at the vertices; each light's highlight per sample of the map
+  kTexturesPerPixel,        // per pixel and light, a specular texture sample; nothing lit exactly
 };
 const std::map<std::string_view, Sites> kSites = {
     {"flat", Sites::kTriangle},
@@ -208,6 +210,9 @@ const std::map<std::string_view, Sites> kSites = {
     {"gouraud-subdivided", Sites::kSixSamples},
     {"quadratic", Sites::kSixSamples},
     {"quadratic-screen", Sites::kSixSamples},
+    {"envmap", Sites::kVertexAndMap},
+    {"blinn-map", Sites::kTexturesPerPixel},
+    {"quadratic-blinn-map", Sites::kTexturesPerPixel},
     {"kb", Sites::kSpanTerms},
     {"kb-noskip", Sites::kSpanTermsAll},
     {"kb-decomposition", Sites::kSpanTerms},
@@ -293,6 +298,19 @@ TEST_P(Conformance, CountsAsTheCountersAreDefined) {
         EXPECT_LE(lighting, 6 * triangles);
         EXPECT_EQ(specular, lighting * lights);
         EXPECT_GE(counter(f, "normalizations"), 3 * triangles);  // the midpoints' normals
+        break;
+      case Sites::kVertexAndMap: {  // a map of 65² samples, built once or more per frame
+        const std::uint64_t map = 65 * 65 * lights;
+        EXPECT_GT(lighting, 0u);
+        EXPECT_LE(lighting, 3 * triangles);
+        EXPECT_GE(specular, map);
+        EXPECT_EQ(specular % map, 0u);
+        break;
+      }
+      case Sites::kTexturesPerPixel:
+        EXPECT_EQ(lighting, 0u);
+        EXPECT_EQ(specular, shaded * lights);
+        EXPECT_GE(counter(f, "normalizations"), 3 * triangles * lights);  // H at every vertex
         break;
     }
   }
