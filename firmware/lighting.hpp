@@ -46,6 +46,19 @@ inline Vec3u halfway(const Vec3u& l, const Vec3u& e) {
                             std::int64_t{l.z.raw()} + e.z.raw());
 }
 
+// A light's L and H at eye-space point p, where the eye's direction is e: the vectors Duff and
+// Bishop-Weimer hold constant over a triangle (at its centroid) and the Blinn maps take at each
+// point. Adds the unit vectors it forms to normalizations (a point light's L, and H).
+struct LightAndHalfway {
+  Vec3u l, h;
+};
+inline LightAndHalfway light_and_halfway(const LightState& light, const Vec3q16& p, const Vec3u& e,
+                                         Counters& counters) {
+  const Vec3u l = light_direction(light, p);
+  counters.normalizations += light.type == LightType::kPoint ? 2u : 1u;
+  return LightAndHalfway{l, halfway(l, e)};
+}
+
 struct Radiance {
   std::int64_t c[3];  // I_c, Q.30, not yet clamped
 };

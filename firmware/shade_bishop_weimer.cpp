@@ -333,9 +333,7 @@ bool BishopWeimerMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   bool saturated = false;
   for (const LightState& l : ctx.lights) {
     if (!contributes(l)) continue;
-    const Vec3u lv = light_direction(l, p);
-    const Vec3u h = halfway(lv, eye);
-    counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;
+    const auto [lv, h] = light_and_halfway(l, p, eye, *counters_);
     // Each term (diffuse, specular) left out is counted, as in the Kuijk-Blake methods.
     const bool diffuse_away = faces_away(tri, lv), specular_away = faces_away(tri, h);
     counters_->lights_skipped_triangle += (diffuse_away ? 1u : 0u) + (specular_away ? 1u : 0u);

@@ -103,11 +103,10 @@ bool BlinnMapMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     // The planes' vectors at the points: L for the diffuse texture, H for the specular one.
     Vec3u plane[2][6];
     for (int k = 0; k < points; ++k) {
-      plane[0][k] = light_direction(l, six.point[k]);
-      plane[1][k] = halfway(plane[0][k], eye[k]);
+      const LightAndHalfway v = light_and_halfway(l, six.point[k], eye[k], *counters_);
+      plane[0][k] = v.l;
+      plane[1][k] = v.h;
     }
-    counters_->normalizations +=
-        static_cast<std::uint64_t>(points) * (l.type == LightType::kPoint ? 2u : 1u);
     std::int64_t coord[kCoordinates][6];
     for (int p = 0; p < 2; ++p) {
       bool up_axis = true;  // one axis for the whole triangle, so its coordinates agree

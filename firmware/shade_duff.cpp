@@ -43,9 +43,7 @@ bool DuffMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   lights_ = 0;
   for (const LightState& l : ctx.lights) {
     if (!contributes(l)) continue;
-    const Vec3u lv = light_direction(l, p);
-    const Vec3u h = halfway(lv, v);
-    counters_->normalizations += l.type == LightType::kPoint ? 2u : 1u;
+    const auto [lv, h] = light_and_halfway(l, p, v, *counters_);
     LightTerm& t = light_[lights_];
     t.l[0] = lv.x.raw(), t.l[1] = lv.y.raw(), t.l[2] = lv.z.raw();
     t.h[0] = h.x.raw(), t.h[1] = h.y.raw(), t.h[2] = h.z.raw();

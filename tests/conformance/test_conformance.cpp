@@ -28,6 +28,7 @@
 #include "firmware/registry.hpp"
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
+#include "tests/paper_scenes.hpp"
 
 namespace tp::fw {
 // gtest prints a failing parameter by its name.
@@ -38,15 +39,6 @@ namespace tp::host {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-
-// Every scenes/*.json (the paper scenes and their multi-light variants).
-std::vector<std::string> paper_scenes() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(TP_SCENES_DIR))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 Scene paper_scene(const std::string& name) {
   Scene s = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");

@@ -224,24 +224,36 @@ std::vector<Kind> kinds() {
           specular(20), specular(100), sphere};
 }
 
-// Sizes 16 to 256 cells, nearest and bilinear. Pinned: the methods' choice, 64 cells bilinear,
-// within its measured error (+10 %), and the two facts the choice rests on.
+// Sizes 16 to 256 cells, nearest and bilinear, 16- and 8-bit samples. Pinned: the methods'
+// choice, 64 cells bilinear with 16-bit samples, within its measured error (+10 %), and the
+// three facts the choice rests on.
 TEST(Texture, ErrorTableOfSizesAndFilters) {
-  std::printf("| texture | cells | nearest max | nearest rms | bilinear max | bilinear rms |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|\n");
+  std::printf(
+      "| texture | cells | nearest max | nearest rms | bilinear max | bilinear rms | 8-bit "
+      "bilinear "
+      "max | 8-bit bilinear rms |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
   // Measured 2026-12-03 (this test's table), 64 cells bilinear: max levels.
   const double kPinnedMax[] = {21.19, 1.23, 5.84, 1.25};
   int k = 0;
   for (const Kind& kind : kinds()) {
-    TextureError at64, nearest64, at128;
+    TextureError at64, nearest64, at128, at64_8bit;
     for (int log2 = 4; log2 <= 8; ++log2) {
       const int texels = texture_texels(log2) * kind.stride;
       std::vector<std::uint16_t> tex(static_cast<std::size_t>(texels));
       kind.build(tex, log2);
       const TextureError n = measure(tex, log2, kind.stride, false, kind.exact);
       const TextureError b = measure(tex, log2, kind.stride, true, kind.exact);
-      std::printf("| %s | %d | %.2f | %.3f | %.2f | %.3f |\n", kind.name.c_str(), 1 << log2,
-                  n.max_levels, n.rms_levels, b.max_levels, b.rms_levels);
+      // The same texture with 8-bit samples (each rounded to a multiple of 1/255).
+      std::vector<std::uint16_t> tex8 = tex;
+      for (std::uint16_t& t : tex8)
+        t = static_cast<std::uint16_t>(
+            std::lround(std::lround(t * 255.0 / kTexelOne) * static_cast<double>(kTexelOne) / 255));
+      const TextureError b8 = measure(tex8, log2, kind.stride, true, kind.exact);
+      std::printf("| %s | %d | %.2f | %.3f | %.2f | %.3f | %.2f | %.3f |\n", kind.name.c_str(),
+                  1 << log2, n.max_levels, n.rms_levels, b.max_levels, b.rms_levels, b8.max_levels,
+                  b8.rms_levels);
+      if (log2 == kTextureLog2Cells) at64_8bit = b8;
       if (log2 == kTextureLog2Cells) {
         at64 = b;
         nearest64 = n;
@@ -251,6 +263,7 @@ TEST(Texture, ErrorTableOfSizesAndFilters) {
     SCOPED_TRACE(kind.name);
     EXPECT_LT(at64.rms_levels, nearest64.rms_levels / 2);  // bilinear: the filter pays
     EXPECT_LT(at128.rms_levels, at64.rms_levels);          // a size that still improves
+    EXPECT_LT(at64.rms_levels, at64_8bit.rms_levels);      // 16-bit samples: the bits pay
     EXPECT_LE(at64.max_levels, kPinnedMax[k] * 1.1);
     ++k;
   }

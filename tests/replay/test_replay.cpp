@@ -13,18 +13,10 @@
 #include "host/command_stream.hpp"
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
+#include "tests/paper_scenes.hpp"
 
 namespace tp::host {
 namespace {
-
-// Every scenes/*.json (the paper scenes; scenes/stress/ is a sub-folder and not included).
-std::vector<std::string> paper_scenes() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(TP_SCENES_DIR))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 Scene scene_at(const std::string& name, const std::string& method, int w, int h) {
   Scene s = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");

@@ -10,17 +10,10 @@
 
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
+#include "tests/paper_scenes.hpp"
 
 namespace tp::host {
 namespace {
-
-std::vector<std::string> paper_scenes() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(TP_SCENES_DIR))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 std::uint64_t saturations(const CounterSnapshot& counters) {
   for (const auto& [name, value] : counters)
