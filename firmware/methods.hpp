@@ -308,10 +308,19 @@ class QuadraticMethod final : public ShadingMethod {
 
   // The forward-differenced values' fraction bits (colour units): Q.52, |r| < 2^5 on a span.
   static constexpr int kForwardFrac = 52;
+  // Forward differencing of eq. 4.1 along a span (shared with quadratic-blinn-map's
+  // coordinates): whether the barycentrics allow it (affine in x, steps of at most 1), the
+  // constant second difference per pixel, and the value and first difference at the span's first
+  // pixel (b started there), all Q.52 for values of |r| <= 1 in Q.30.
+  struct Forward {
+    std::int64_t r, d1;
+  };
+  static bool can_forward(const SteppedBarycentrics& b);
+  static std::int64_t second_difference(const Coefficients& q, const SteppedBarycentrics& b);
+  static Forward forward_start(const Coefficients& q, const SteppedBarycentrics& b,
+                               std::int64_t d2);
 
  private:
-  void start_forward();
-
   bool screen_linear_ = false;
   SteppedBarycentrics bary_;
   Coefficients coef_[3];  // per channel
@@ -320,6 +329,46 @@ class QuadraticMethod final : public ShadingMethod {
   bool forward_ = false;
   std::int64_t r_[3] = {0, 0, 0}, d1_[3] = {0, 0, 0}, d2_[3] = {0, 0, 0};
 };
+
+// QuadraticMethod's forward differencing, inline: quadratic and quadratic-blinn-map take it at
+// every span's start, per channel or coordinate.
+// Forward differencing where s and t are affine in x and move at most 1 per pixel (a sliver's
+// spans are a pixel or two long: eq. 4.1 directly there).
+inline bool QuadraticMethod::can_forward(const SteppedBarycentrics& b) {
+  constexpr std::int64_t kOne = std::int64_t{1} << 40;
+  const std::int64_t ds = b.dm()[1], dt = b.dm()[2];  // Q.40
+  return b.affine() && (ds < 0 ? -ds : ds) <= kOne && (dt < 0 ? -dt : dt) <= kOne;
+}
+
+// The second difference per pixel, 2 (C3 ds² + C4 ds dt + C5 dt²), Q.52: each product through
+// Q.50 (|C ds| <= 2^53), so that its error, which adds up k²/2 times over k pixels, stays below
+// 2^-28 of a colour unit over 4096.
+inline std::int64_t QuadraticMethod::second_difference(const Coefficients& q,
+                                                       const SteppedBarycentrics& b) {
+  const std::int64_t ds = b.dm()[1], dt = b.dm()[2];  // Q.40
+  const auto term = [](std::int64_t c, std::int64_t x, std::int64_t y) {
+    return fx::mul_shift_right(fx::mul_shift_right(c, x, 20), y, 90 - kForwardFrac);
+  };
+  return 2 * (term(q.c[3], ds, ds) + term(q.c[4], ds, dt) + term(q.c[5], dt, dt));
+}
+
+// The span's first pixel: r by eq. 4.1, and its first difference
+// r(s + ds, t + dt) − r(s, t) = (∂r/∂s) ds + (∂r/∂t) dt + d2 / 2, the gradient at Q.40.
+inline QuadraticMethod::Forward QuadraticMethod::forward_start(const Coefficients& q,
+                                                               const SteppedBarycentrics& b,
+                                                               std::int64_t d2) {
+  const std::int64_t s0 = b.m()[1], t0 = b.m()[2];  // Q.40
+  const std::int64_t ds = b.dm()[1], dt = b.dm()[2];
+  const std::int64_t* c = q.c;
+  const std::int64_t gs =
+      (c[1] << 10) + 2 * fx::mul_shift_right(c[3], s0, 30) + fx::mul_shift_right(c[4], t0, 30);
+  const std::int64_t gt =
+      (c[2] << 10) + fx::mul_shift_right(c[4], s0, 30) + 2 * fx::mul_shift_right(c[5], t0, 30);
+  return Forward{evaluate(q, fx::round_shift_right(s0, 10), fx::round_shift_right(t0, 10))
+                     << (kForwardFrac - 30),
+                 fx::mul_shift_right(gs, ds, 80 - kForwardFrac) +
+                     fx::mul_shift_right(gt, dt, 80 - kForwardFrac) + d2 / 2};
+}
 
 // 9. Gouraud on the triangle subdivided into four at the six points (shade_gouraud_subdivided.cpp;
 //    Vlasic's fair comparison for quadratic shading, his Table 6.1): the same six colours as
@@ -390,7 +439,8 @@ class EnvmapMethod final : public ShadingMethod {
 //     plane's vector (N·L < 0, N·H < 0) is placed outside the unit disk, at radius 2 - r, where
 //     the textures are 0. blinn-map computes the coordinates at the vertices and interpolates
 //     them in screen space; quadratic (quadratic-blinn-map) at the six points of Vlasic's
-//     quadratic shading, through his eq. 4.2, at perspective-correct (s, t). The textures
+//     quadratic shading, through his eq. 4.2, at perspective-correct (s, t), forward-differenced
+//     where they are affine (orthographic views) as quadratic's colours are. The textures
 //     depend on n alone (the colours are applied per pixel): one pair for every light.
 class BlinnMapMethod final : public ShadingMethod {
  public:
@@ -411,14 +461,19 @@ class BlinnMapMethod final : public ShadingMethod {
     std::int64_t diffuse[3];   // Il_c kd O_c, Q.30
     std::int64_t specular[3];  // Il_c ks, Q.30
     // The four coordinates u_D, v_D, u_S, v_S: blinn-map's interpolated in screen space (at[]
-    // the current pixel's, Q.40); the quadratic's eq. 4.2 coefficients (Q.29 values).
+    // the current pixel's, Q.40); the quadratic's eq. 4.2 coefficients (Q.29 values) and, where
+    // forward-differenced, at[] the current pixel's value with its differences d1, d2 (Q.52).
     LinearCoordinate linear[4];
-    std::int64_t at[4];
+    std::int64_t at[4], d1[4], d2[4];
     QuadraticMethod::Coefficients quadratic[4];
   };
   void refresh(const ShadeContext& ctx);
+  enum class Interpolation { kLinear, kForward, kPerPixel };
+  template <Interpolation kMode>
+  void shade_pixels(int length, Rgb8* out);
 
   bool quadratic_ = false;
+  bool forward_ = false;  // the quadratic's coordinates forward-differenced on this triangle
   const ShadeContext* ctx_ = nullptr;
   std::uint64_t revision_ = 0;
   std::uint32_t built_n_ = 0;  // the specular texture's exponent, 0 before the first

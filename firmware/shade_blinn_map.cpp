@@ -73,6 +73,9 @@ bool BlinnMapMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   refresh(ctx);
   counters_ = ctx.counters;
   bary_.setup(tri, !quadratic_);  // blinn-map: screen-linear; quadratic: Vlasic's (s, t)
+  // The quadratic's coordinates forward-differenced where (s, t) are affine in x (orthographic
+  // views), as quadratic shading's colours; else eq. 4.1 per pixel.
+  forward_ = quadratic_ && QuadraticMethod::can_forward(bary_);
   lights_ = 0;
   if (!diffuse_ && !specular_) return true;
   // The points: the vertices, and for the quadratic the edge midpoints too.
@@ -123,6 +126,7 @@ bool BlinnMapMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
         std::int64_t r[6];  // Vlasic eq. 4.2 on the coordinates
         for (int k = 0; k < 6; ++k) r[k] = coord[a][kEq42Order[k]];
         t.quadratic[a] = QuadraticMethod::coefficients(r);
+        if (forward_) t.d2[a] = QuadraticMethod::second_difference(t.quadratic[a], bary_);
       } else {
         for (int i = 0; i < 3; ++i) t.linear[a].vertex[i] = coord[a][i];
         t.linear[a].setup(bary_);
@@ -135,13 +139,38 @@ bool BlinnMapMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 void BlinnMapMethod::shade_span(const Span& s, Rgb8* out) {
   const int length = s.x1 - s.x0;
   bary_.start(s.x0, s.y);
-  if (!quadratic_)  // the coordinates at the span's first pixel, Q.40
-    for (int j = 0; j < lights_; ++j)
-      for (int a = 0; a < kCoordinates; ++a) term_[j].at[a] = term_[j].linear[a].start(bary_);
+  // The coordinates at the span's first pixel: blinn-map's Q.40, the forward-differenced
+  // quadratic's value and first difference (Q.52 for the Q.29 coordinate read as Q.30).
+  for (int j = 0; j < lights_; ++j)
+    for (int a = 0; a < kCoordinates; ++a) {
+      LightTerm& t = term_[j];
+      if (!quadratic_) {
+        t.at[a] = t.linear[a].start(bary_);
+      } else if (forward_) {
+        const QuadraticMethod::Forward f =
+            QuadraticMethod::forward_start(t.quadratic[a], bary_, t.d2[a]);
+        t.at[a] = f.r;
+        t.d1[a] = f.d1;
+      }
+    }
+  if (!quadratic_)
+    shade_pixels<Interpolation::kLinear>(length, out);
+  else if (forward_)
+    shade_pixels<Interpolation::kForward>(length, out);
+  else
+    shade_pixels<Interpolation::kPerPixel>(length, out);
+  counters_->specular_evaluations +=
+      static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(lights_);
+}
+
+// The pixel loop, one instance per way of interpolating the coordinates.
+template <BlinnMapMethod::Interpolation kMode>
+void BlinnMapMethod::shade_pixels(int length, Rgb8* out) {
+  constexpr int kForwardShift = QuadraticMethod::kForwardFrac - 30;
   constexpr int kAccFrac = 30 + kTexelFrac;  // weights Q.30 times samples Q1.15
   constexpr std::int64_t kAccOne = std::int64_t{1} << kAccFrac;
   // The loop's invariants in locals: the output's byte stores may alias any member.
-  const bool quadratic = quadratic_, diffuse = diffuse_, specular = specular_;
+  const bool diffuse = diffuse_, specular = specular_;
   const int lights = lights_;
   LightTerm* const terms = term_;
   const std::uint16_t* const diffuse_texture = diffuse_texture_;
@@ -149,18 +178,22 @@ void BlinnMapMethod::shade_span(const Span& s, Rgb8* out) {
   const std::int64_t ambient[3] = {ambient_[0] << kTexelFrac, ambient_[1] << kTexelFrac,
                                    ambient_[2] << kTexelFrac};
   for (int x = 0; x < length; ++x) {
-    std::int64_t b[3];  // (s, t) = (b1, b2) for the quadratic
-    if (quadratic) bary_.next(b);
+    std::int64_t b[3];  // (s, t) = (b1, b2) for eq. 4.1
+    if constexpr (kMode == Interpolation::kPerPixel) bary_.next(b);
     std::int64_t acc[3] = {ambient[0], ambient[1], ambient[2]};
     for (int j = 0; j < lights; ++j) {
       LightTerm& t = terms[j];
       std::int64_t c[kCoordinates];  // Q.29
       for (int a = 0; a < kCoordinates; ++a) {
-        if (quadratic) {
-          c[a] = QuadraticMethod::evaluate(t.quadratic[a], b[1], b[2]);  // Vlasic eq. 4.1
-        } else {
+        if constexpr (kMode == Interpolation::kLinear) {  // one addition per coordinate
           c[a] = t.at[a] >> (40 - kCoordFrac);
           t.at[a] += t.linear[a].step;
+        } else if constexpr (kMode == Interpolation::kForward) {  // two additions
+          c[a] = t.at[a] >> kForwardShift;
+          t.at[a] += t.d1[a];
+          t.d1[a] += t.d2[a];
+        } else {
+          c[a] = QuadraticMethod::evaluate(t.quadratic[a], b[1], b[2]);  // Vlasic eq. 4.1
         }
       }
       if (diffuse) {  // Vlasic eq. 5.4's texture at (u_D, v_D)
@@ -181,8 +214,6 @@ void BlinnMapMethod::shade_span(const Span& s, Rgb8* out) {
     }
     out[x] = Rgb8{level[0], level[1], level[2]};
   }
-  counters_->specular_evaluations +=
-      static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(lights_);
 }
 
 }  // namespace tp::fw

@@ -6,10 +6,7 @@
 namespace tp::fw {
 namespace {
 
-constexpr std::int64_t kOne40 = std::int64_t{1} << 40;
 constexpr int kF = QuadraticMethod::kForwardFrac;
-
-std::int64_t magnitude(std::int64_t v) { return v < 0 ? -v : v; }
 
 // A forward-differenced value's output level: round(255 r) clamped, from Q.52 (|r| < 2^5).
 std::uint8_t forward_level(std::int64_t r) {
@@ -51,48 +48,21 @@ bool QuadraticMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     coef_[ch] = coefficients(r);
   }
   bary_.setup(tri, screen_linear_);
-  // Forward differencing where s and t are affine in x and move at most 1 per pixel (a sliver's
-  // spans are a pixel or two long: eq. 4.1 directly there).
-  const std::int64_t ds = bary_.dm()[1], dt = bary_.dm()[2];  // Q.40
-  forward_ = bary_.affine() && magnitude(ds) <= kOne40 && magnitude(dt) <= kOne40;
-  if (forward_) {
-    // The second difference per pixel, 2 (C3 ds² + C4 ds dt + C5 dt²), Q.52: each product
-    // through Q.50 (|C ds| <= 2^53), so that its error, which adds up k²/2 times over k pixels,
-    // stays below 2^-28 of a colour unit over 4096.
-    const auto term = [](std::int64_t c, std::int64_t a, std::int64_t b) {
-      return fx::mul_shift_right(fx::mul_shift_right(c, a, 20), b, 90 - kF);
-    };
-    for (int ch = 0; ch < 3; ++ch) {
-      const std::int64_t* c = coef_[ch].c;
-      d2_[ch] = 2 * (term(c[3], ds, ds) + term(c[4], ds, dt) + term(c[5], dt, dt));
-    }
-  }
+  forward_ = can_forward(bary_);
+  if (forward_)
+    for (int ch = 0; ch < 3; ++ch) d2_[ch] = second_difference(coef_[ch], bary_);
   return true;
-}
-
-// The span's first pixel: r by eq. 4.1, and its first difference
-// r(s + ds, t + dt) − r(s, t) = (∂r/∂s) ds + (∂r/∂t) dt + d2 / 2, the gradient at Q.40.
-void QuadraticMethod::start_forward() {
-  const std::int64_t s0 = bary_.m()[1], t0 = bary_.m()[2];  // Q.40
-  const std::int64_t ds = bary_.dm()[1], dt = bary_.dm()[2];
-  for (int ch = 0; ch < 3; ++ch) {
-    const std::int64_t* c = coef_[ch].c;
-    const std::int64_t gs =
-        (c[1] << 10) + 2 * fx::mul_shift_right(c[3], s0, 30) + fx::mul_shift_right(c[4], t0, 30);
-    const std::int64_t gt =
-        (c[2] << 10) + fx::mul_shift_right(c[4], s0, 30) + 2 * fx::mul_shift_right(c[5], t0, 30);
-    r_[ch] = evaluate(coef_[ch], fx::round_shift_right(s0, 10), fx::round_shift_right(t0, 10))
-             << (kF - 30);
-    d1_[ch] =
-        fx::mul_shift_right(gs, ds, 80 - kF) + fx::mul_shift_right(gt, dt, 80 - kF) + d2_[ch] / 2;
-  }
 }
 
 void QuadraticMethod::shade_span(const Span& s, Rgb8* out) {
   bary_.start(s.x0, s.y);
   const int length = s.x1 - s.x0;
   if (forward_) {
-    start_forward();
+    for (int ch = 0; ch < 3; ++ch) {
+      const Forward f = forward_start(coef_[ch], bary_, d2_[ch]);
+      r_[ch] = f.r;
+      d1_[ch] = f.d1;
+    }
     for (int x = 0; x < length; ++x) {
       out[x] = Rgb8{forward_level(r_[0]), forward_level(r_[1]), forward_level(r_[2])};
       for (int ch = 0; ch < 3; ++ch) {  // two additions per channel
