@@ -1,5 +1,7 @@
-// Fits the eight rational-correction coefficients of the firmware's closed form for the
-// Kuijk-Blake (a, b) (firmware/cosn.hpp, closed_params):
+// Fits the rational-correction coefficients of the firmware's closed forms for the Kuijk-Blake
+// (a, b) (firmware/cosn.hpp).
+//
+// Default mode, closed_params (the minimax closed form):
 //   a = α (n² + p1 n + p0) / ((n² + q1 n + q0) √n),  b = β (n² + r1 n + r0) / ((n² + s1 n + s0) √n)
 // α, β are the large-n minimax limits (gen_cosn_fits --print: a√n, b√n at n = 10,000).
 // Objective: max over n of (max error / target), target 1.5 %, 1.85 % at n = 2 (the minimax
@@ -11,14 +13,24 @@
 // stored in cosn.hpp came from a longer run of the same objective through an intermediate
 // [1/1] form and one round of "refine" (objective 0.9796: 2.449 % at n = 1, 1.812 % at
 // n = 2, 1.469 % for n >= 3); "refine" restarts from them.
+//
+// Mode "least-squares", least_squares_params (the Kuijk-Blake methods' default):
+//   a = α (n² + p1 n + p0) / ((n² + q1 n + q0) √n), the same form for b, with α, β the
+//   least-squares fit's a√n, b√n at n = 10,000 (tables/cosn_fits.hpp). Objective: the max
+//   relative distance to the generated least-squares (a, b) over every grid point (every
+//   n <= 200, 64 per decade to 10,000); a and b are fitted apart, 4-D Nelder-Mead with 12
+//   restarts, under a second. Prints the Q16 coefficients and the rounded form's distances.
+//   usage: fit_cosn_closed_form least-squares
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
 #include <vector>
 
+#include "tables/cosn_fits.hpp"
 #include "tables/cosn_reference.hpp"
 
 namespace {
@@ -26,6 +38,7 @@ namespace {
 using namespace tp::tables::cosn;
 constexpr int P = 8;
 using V = std::array<double, P>;
+namespace fits = tp::tables::cosn_fits;
 constexpr double kAlpha = 0.75318, kBeta = 2.99243;
 
 double rational(double s, double n, double u1, double u0, double v1, double v0) {
@@ -49,7 +62,11 @@ struct Problem {
   }
 };
 
-V nelder_mead(const Problem& f, V x, double step, int iters) {
+// Nelder-Mead in D dimensions (called as nelder_mead<D>).
+template <int D, class F>
+std::array<double, D> nelder_mead(const F& f, std::array<double, D> x, double step, int iters) {
+  constexpr int P = D;
+  using V = std::array<double, D>;
   std::array<V, P + 1> s;
   std::array<double, P + 1> v;
   for (int i = 0; i <= P; ++i) {
@@ -99,9 +116,49 @@ V nelder_mead(const Problem& f, V x, double step, int iters) {
   return s[static_cast<std::size_t>(std::min_element(v.begin(), v.end()) - v.begin())];
 }
 
+// Mode "least-squares": one parameter (a or b) of least_squares_params against the generated
+// least-squares fit, as Q2.29 raw values.
+struct Tracking {
+  const std::array<std::int32_t, fits::kCount>& fit;
+  double scale() const { return std::ldexp(fit[fits::kCount - 1], -29) * 100; }  // √10,000
+  double at(const std::array<double, 4>& c, int i) const {
+    return rational(scale(), fits::kN[i], c[0], c[1], c[2], c[3]);
+  }
+  double distance(const std::array<double, 4>& c, int i) const {
+    return std::fabs(at(c, i) / std::ldexp(fit[i], -29) - 1);
+  }
+  double operator()(const std::array<double, 4>& c) const {
+    double worst = 0;
+    for (int i = 0; i < fits::kCount; ++i) {
+      if (!(at(c, i) > 0)) return 1e9;
+      worst = std::max(worst, distance(c, i));
+    }
+    return worst;
+  }
+};
+
+void fit_least_squares(const char* name, const Tracking& f, std::array<double, 4> c) {
+  for (int r = 0; r < 12; ++r) c = nelder_mead<4>(f, c, 0.2 / (r + 1), 3000);
+  std::array<double, 4> q;
+  std::printf("%s: scale Q2.29 %lld, Q16:", name, std::llround(f.scale() * (1 << 29)));
+  for (int i = 0; i < 4; ++i) {
+    const long long raw = std::llround(c[i] * 65536);
+    q[i] = raw / 65536.0;
+    std::printf(" %lld", raw);
+  }
+  std::printf("; max relative distance %.2e (rounded %.2e)\n", f(c), f(q));
+}
+
+int least_squares_mode() {
+  fit_least_squares("a", Tracking{fits::kA_ls}, {2.6, 1.6, 1.8, 0.8});
+  fit_least_squares("b", Tracking{fits::kB_ls}, {0.8, -0.2, 1.3, 0.3});
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string_view(argv[1]) == "least-squares") return least_squares_mode();
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 6;
   Problem f;
   for (int n = 1; n <= 200; ++n) f.ns.push_back(n);
@@ -117,7 +174,7 @@ int main(int argc, char** argv) {
   }
   std::printf("start objective %.6f\n", f(p));
   for (int r = 0; r < rounds; ++r) {
-    p = nelder_mead(f, p, 0.1 / (r + 1), 1500);
+    p = nelder_mead<P>(f, p, 0.1 / (r + 1), 1500);
     std::printf("round %d objective %.6f\n", r, f(p));
   }
   V q;

@@ -178,7 +178,7 @@ void exponent_sweep(const std::vector<std::string>& scenes) {
 }
 
 void diffuse_vs_cosine() {
-  const auto p = fw::kb::diffuse_params();
+  const auto p = fw::kb::kDiffuseParams;
   const double a = std::ldexp(static_cast<double>(p.a.raw()), -29);
   const double b = std::ldexp(static_cast<double>(p.b.raw()), -29);
   double worst = 0, at = 0, tail = 0, cos_area = 0;

@@ -5,10 +5,13 @@
 //          0                      |θ| >= b              corrected as in docs/ACCURACY.md: a < b)
 //
 // (a, b) depend on n only and replace n as the material attribute. Three sources, each a
-// constexpr function n -> CosnParams (n is clamped to 1..10,000):
-//   paper_params     the paper's closed forms, labels corrected; degrade past n = 125
-//   closed_params    our closed form, fitted to the minimax optimum (docs/ACCURACY.md)
-//   table_params     the generated minimax fit (tables/gen_cosn_fits.cpp), interpolated in n
+// constexpr closed form n -> CosnParams (n is clamped to 1..10,000); no table is linked:
+//   paper_params          the paper's closed forms, labels corrected; degrade past n = 125
+//   closed_params         our closed form, fitted to the minimax optimum (docs/ACCURACY.md)
+//   least_squares_params  our closed form, fitted to the least-squares optimum (the paper's
+//                         criterion): the Kuijk-Blake methods' default
+// The fits they were fitted to are generated in tables/ (tables/gen_cosn_fits.cpp) and read by
+// the tests and the accuracy benchmark only (tables/cosn_fits_lookup.hpp).
 // Integer-only (firmware rules): Q2.29 radians, no floating point.
 #pragma once
 
@@ -17,13 +20,11 @@
 #include "firmware/types.hpp"
 #include "fixedpoint/cordic.hpp"
 #include "fixedpoint/q.hpp"
-#include "tables/cosn_fits.hpp"
 
 namespace tp::fw::cosn {
 
 // Radians in Q2.29, the CORDIC's angle format (|θ| < 4 covers ±π).
 using angle_t = fx::angle_t;
-static_assert(angle_t::frac_bits == tables::cosn_fits::kAngleFracBits, "fits are in Q2.29");
 
 inline constexpr int kMinN = 1;
 inline constexpr int kMaxN = 10000;
@@ -107,34 +108,22 @@ constexpr CosnParams closed_params(int n_in) {
           detail::angle_raw(detail::closed_eval(kClosedB, n))};
 }
 
-// The generated minimax fit. Every n <= 200 is in the table; above, the grid has 64 points
-// per decade and (a, b) are interpolated linearly in n between neighbours.
-constexpr CosnParams table_params(int n_in) {
-  namespace t = tables::cosn_fits;
+// Our closed form for the least-squares optimum, the same [2/2] form as closed_params with
+// (α, β) the least-squares limits (a√n, b√n of the generated fit at n = 10,000):
+//   α = 0.7833744, β = 2.9560430. The four coefficients per parameter were fitted by
+// bench/fit_cosn_closed_form (mode "least-squares": Nelder-Mead minimising the max relative
+// distance to the generated least-squares (a, b) at every n <= 200 and the grid to 10,000). It
+// tracks them within 7.2e-5 (a) and 4.0e-5 (b) relative, Q16 rounding included (tested): the
+// fit's own flat optimum, where that distance moves f by less than 1e-4 of the peak.
+inline constexpr ClosedForm kLeastSquaresA{420570900, 256667, 75348, 224007, -48881};
+inline constexpr ClosedForm kLeastSquaresB{1587013500, 40295, -28316, 66450, 417};
+
+// Bounds as closed_eval's: the ratios lie in [0.58, 1.66] for 1 <= n <= 10^4 and both
+// denominators are positive there.
+constexpr CosnParams least_squares_params(int n_in) {
   const std::int64_t n = detail::clamp_n(n_in);
-  int lo = 0, hi = t::kCount - 1;  // invariant: kN[lo] <= n <= kN[hi]
-  while (hi - lo > 1) {
-    const int mid = (lo + hi) / 2;
-    if (t::kN[static_cast<std::size_t>(mid)] <= n)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  const auto at = [](const auto& arr, int i) -> std::int64_t {
-    return arr[static_cast<std::size_t>(i)];
-  };
-  const std::int64_t n0 = at(t::kN, lo), n1 = at(t::kN, hi);
-  if (n1 == n0 || n == n0)
-    return {detail::angle_raw(at(t::kA_mm, lo)), detail::angle_raw(at(t::kB_mm, lo))};
-  if (n == n1) return {detail::angle_raw(at(t::kA_mm, hi)), detail::angle_raw(at(t::kB_mm, hi))};
-  // Interpolation: a1 - a0 is negative; round the signed product symmetrically.
-  const auto lerp = [&](std::int64_t v0, std::int64_t v1) {
-    const std::int64_t num = (v1 - v0) * (n - n0), den = n1 - n0;
-    const std::int64_t q = num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
-    return v0 + q;
-  };
-  return {detail::angle_raw(lerp(at(t::kA_mm, lo), at(t::kA_mm, hi))),
-          detail::angle_raw(lerp(at(t::kB_mm, lo), at(t::kB_mm, hi)))};
+  return {detail::angle_raw(detail::closed_eval(kLeastSquaresA, n)),
+          detail::angle_raw(detail::closed_eval(kLeastSquaresB, n))};
 }
 
 }  // namespace tp::fw::cosn

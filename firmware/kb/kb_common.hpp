@@ -8,9 +8,11 @@
 // (past the terminator at π/2) and removes the Mach band there (Kuijk-Blake section 2;
 // measured against a clamped cosine in docs/KUIJK-BLAKE.md).
 //
-// (a, b) sources: the material's (a, b) when the host set them (b > 0), else the generated
-// least-squares fit for the material's n (least_squares_params below); diffuse always uses
-// the least-squares fit of n = 1.
+// (a, b) sources: the material's (a, b) when the host set them (b > 0), else the closed form of
+// the least-squares fit for the material's n (cosn::least_squares_params); diffuse always uses
+// the least-squares fit of n = 1. Least squares minimises the integrated error, which is what
+// colour correctness (a mean) measures: on the teapot it gives 0.9954 against 0.9945 with
+// minimax (a, b) (docs/KUIJK-BLAKE.md).
 #pragma once
 
 #include <cstdint>
@@ -22,7 +24,6 @@
 #include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
-#include "tables/cosn_fits.hpp"
 
 namespace tp::fw::kb {
 
@@ -42,24 +43,12 @@ inline std::int64_t ambient_value(q1_30 ka, q1_30 colour) {
   return std::int64_t{k.raw()} * 255 * (std::int64_t{1} << shift);
 }
 
-// The least-squares fit of (a, b) to cos^n (the paper's own criterion) for n <= 200, read from
-// the generated table; the minimax fit (cosn::table_params) beyond. Least squares minimises the
-// integrated error, which is what colour correctness (a mean) measures: on the teapot it gives
-// 0.9954 against 0.9945 with minimax (a, b) (docs/KUIJK-BLAKE.md).
-inline cosn::CosnParams least_squares_params(int n) {
-  namespace t = tables::cosn_fits;
-  if (n >= 1 && n <= t::kCount && t::kN[static_cast<std::size_t>(n - 1)] == n) {
-    const auto i = static_cast<std::size_t>(n - 1);
-    return {angle_t::from_raw(t::kA_ls[i]), angle_t::from_raw(t::kB_ls[i])};
-  }
-  return cosn::table_params(n);
-}
-
 inline cosn::CosnParams specular_params(const MaterialCmd& m) {
   if (m.b.raw() > 0 && m.a.raw() > 0 && m.a < m.b) return {m.a, m.b};
-  return least_squares_params(static_cast<int>(m.n));
+  return cosn::least_squares_params(static_cast<int>(m.n));
 }
-inline cosn::CosnParams diffuse_params() { return least_squares_params(1); }
+// A constant: the closed form is evaluated at compile time, not per material change.
+inline constexpr cosn::CosnParams kDiffuseParams = cosn::least_squares_params(1);
 
 // The diffuse and specular cos^n coefficients of the current material. They depend on
 // (n, a, b) alone and cost four CORDIC calls to make, so consecutive triangles of one material
@@ -68,7 +57,7 @@ struct MaterialCoeffs {
   cosn::CosnCoeffs diffuse{}, specular{};
   bool refresh(const MaterialCmd& m) {
     if (made_ && n_ == m.n && a_ == m.a.raw() && b_ == m.b.raw()) return false;
-    diffuse = cosn::make_coeffs(diffuse_params());
+    diffuse = cosn::make_coeffs(kDiffuseParams);
     specular = cosn::make_coeffs(specular_params(m));
     made_ = true;
     n_ = m.n;

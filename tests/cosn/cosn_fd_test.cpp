@@ -44,7 +44,9 @@ SpanRun segments_of(const Case& c) {
 }
 
 CosnParams source(int which, int n) {
-  return which == 0 ? paper_params(n) : (which == 1 ? closed_params(n) : table_params(n));
+  if (which == 0) return paper_params(n);
+  if (which == 1) return closed_params(n);
+  return least_squares_params(n);
 }
 
 // Random spans with |θ| <= π everywhere; every fourth crosses all four break points.
@@ -195,7 +197,7 @@ TEST(CosnFd, SummedTermsViaJumpsAreExact) {
 // Error of the integer evaluation (output Q.16, 1 LSB = 2^-16 of full intensity) against
 // the double f at the same θ(x) and scale, over all random and special spans.
 TEST(CosnFd, ErrorAgainstDoubleF) {
-  double worst_f = 0, worst_cos = 0;
+  double worst_f = 0, worst_closed = 0, worst_ls = 0;
   auto all = random_cases(600);
   const auto sp = special_cases();
   all.insert(all.end(), sp.begin(), sp.end());
@@ -203,24 +205,35 @@ TEST(CosnFd, ErrorAgainstDoubleF) {
     const SpanRun r = segments_of(c);
     const double a = to_d(c.p.a.raw()), b = to_d(c.p.b.raw());
     const double s = std::ldexp(c.scale, -30);
+    // Against cos^n only for our (a, b) (the paper's are tens of % off for large n).
+    const bool closed = c.p.a == closed_params(c.n).a && c.p.b == closed_params(c.n).b;
+    const bool ls = c.p.a == least_squares_params(c.n).a && c.p.b == least_squares_params(c.n).b;
     for (int x = 0; x < c.length; ++x) {
       const double theta = to_d(c.theta0 + x * c.dtheta);
       const double got = to_out(eval_at(r.segs.data(), r.count, x)) / 65536.0;
       const double ef = std::fabs(got - s * ref::f_quad(theta, a, b)) * 65536;
       worst_f = std::max(worst_f, ef);
-      // Against cos^n only for our (a, b) (the paper's are tens of % off for large n).
-      if (c.p.a != paper_params(c.n).a)
-        worst_cos = std::max(worst_cos, std::fabs(got - s * ref::cosn_target(theta, c.n)) * 65536);
+      const double ec = std::fabs(got - s * ref::cosn_target(theta, c.n)) * 65536;
+      if (closed) worst_closed = std::max(worst_closed, ec);
+      if (ls) worst_ls = std::max(worst_ls, ec);
     }
   }
-  std::printf("max |int - f| = %.4f LSB(2^-16); max |int - cos^n| = %.1f LSB\n", worst_f,
-              worst_cos);
-  // Measured by this test's printout (build/h2/tests/cosn/cosn_fd_test
+  std::printf(
+      "max |int - f| = %.4f LSB(2^-16); max |int - cos^n| = %.1f LSB (closed_params), "
+      "%.1f LSB (least_squares_params)\n",
+      worst_f, worst_closed, worst_ls);
+  // Measured by this test's printout (build/release/tests/cosn/cosn_fd_test
   // --gtest_filter=*Error*), 2026-11-22: 0.5231 LSB against f = the output rounding (0.5) plus
   // the Q.44 coefficient rounding grown over t² (bound 1/32 LSB); 1605.3 LSB = 2.45 % against
-  // cos^n (n = 1, closed form). Pinned with margin: 0.54 LSB, 2.5 % of the peak.
+  // cos^n (n = 1, closed form). Pinned with margin: 0.54 LSB, 2.5 % of the peak. The
+  // least-squares form minimises the integrated error, not the max: the least-squares optimum
+  // itself is 3.377 % off at n = 1 (docs/ACCURACY.md); 2026-12-04: 2215.0 LSB = 3.38 %, pinned
+  // at 3.45 %.
   EXPECT_LE(worst_f, 0.54);
-  EXPECT_LE(worst_cos, 0.025 * 65536);
+  EXPECT_LE(worst_closed, 0.025 * 65536);
+  EXPECT_LE(worst_ls, 0.0345 * 65536);
+  EXPECT_GT(worst_closed, 0);
+  EXPECT_GT(worst_ls, 0);
 }
 
 }  // namespace
