@@ -54,6 +54,15 @@ bool flag(std::uint32_t w, bool& out) {
   return w <= 1;
 }
 
+// set_viewport's flags word: bit 0 write counts, bit 1 no depth buffer; any other bit is a
+// malformed command (docs/CONVENTIONS.md).
+constexpr std::uint32_t kViewportWriteCount = 1u, kViewportNoDepth = 2u;
+bool viewport_flags(std::uint32_t w, ViewportCmd& c) {
+  c.write_count = (w & kViewportWriteCount) != 0;
+  c.depth_buffer = (w & kViewportNoDepth) == 0;
+  return (w & ~(kViewportWriteCount | kViewportNoDepth)) == 0;
+}
+
 }  // namespace
 
 Error Device::execute(std::span<const std::uint32_t> words) {
@@ -80,7 +89,7 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
       c.width = p[0];
       c.height = p[1];
       c.format = static_cast<PixelFormat>(p[2]);
-      if (!flag(p[3], c.write_count)) return fail(Error::kBadArgument);
+      if (!viewport_flags(p[3], c)) return fail(Error::kBadArgument);
       return set_viewport(c);
     }
     case Opcode::kSetBufferCapacity: return set_buffer_capacity(BufferCapacityCmd{p[0], p[1]});

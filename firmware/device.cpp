@@ -16,6 +16,12 @@ namespace {
 
 constexpr std::size_t align8(std::size_t v) { return (v + 7) & ~std::size_t{7}; }
 
+// The depth region's words: one per pixel, or without a depth buffer one row, where the pixel
+// loops store the depth words that no test reads.
+constexpr std::size_t depth_words(const ViewportCmd& vp) {
+  return vp.depth_buffer ? std::size_t{vp.width} * vp.height : std::size_t{vp.width};
+}
+
 bool coord_ok(q15_16 v) { return v.raw() >= -kMaxCoordRaw && v.raw() <= kMaxCoordRaw; }
 // A raw component is any int32 (|raw| <= 2^31), not only a unit vector's: each square is at most
 // 2^62 and the sum of three at most 3 * 2^62, which fits an unsigned 64-bit integer but not a
@@ -103,14 +109,18 @@ class PixelWriter final {
     depth_ = d.region<std::uint32_t>(st.off_depth);
     colour_ = d.region<std::uint8_t>(st.off_colour);
     counts_ = st.viewport.write_count ? d.region<std::uint8_t>(st.off_counts) : nullptr;
+    // Without a depth buffer the depth test passes every pixel; the loops' depth stores go to one
+    // row kept for them (Device::layout), the same row for every span.
+    const bool depth_test = st.depth_test && st.viewport.depth_buffer;
+    depth_row_stride_ = st.viewport.depth_buffer ? width_ : 0;
     const int variant = (st.viewport.format == PixelFormat::kRgb565 ? 4 : 0) |
-                        (st.depth_test ? 2 : 0) | (counts_ != nullptr ? 1 : 0);
+                        (depth_test ? 2 : 0) | (counts_ != nullptr ? 1 : 0);
     write_exact_ = kLoops[1][variant];
     write_saturating_ = kLoops[0][variant];
     // The method is the draw's: whether it takes early depth, and whether its colours are computed
     // in the pixel loop (not with the write counts: the linear loops leave them out), is decided
     // once.
-    early_depth_ = st.depth_test && d.method().skips_hidden_pixels();
+    early_depth_ = depth_test && d.method().skips_hidden_pixels();
     linear_ = d.method().colours_linear() && counts_ == nullptr && !early_depth_;
     if (linear_) {
       write_linear_exact_ = kLinearLoops[1][variant >> 1];
@@ -129,19 +139,20 @@ class PixelWriter final {
   void span(const Span& s) {
     ++spans_;
     const std::size_t row = static_cast<std::size_t>(s.y) * width_;
+    std::uint32_t* const depth_row = depth_ + static_cast<std::size_t>(s.y) * depth_row_stride_;
     const Lambdas lam = lambdas_at(*tri_, 16 * std::int64_t{s.x0} + 8, 16 * std::int64_t{s.y} + 8);
     const std::int64_t z = zplane_.at(lam) << ScreenPlane::kStepFrac;
     if (linear_) {
-      write_linear(row, s, z, method_->linear_span(s));
+      write_linear(row, depth_row, s, z, method_->linear_span(s));
       return;
     }
     if (!early_depth_) {
       method_->shade_span(s, colours_);
-      write_run(row, s.x0, s.x1, z, colours_);
+      write_run(row, depth_row, s.x0, s.x1, z, colours_);
       return;
     }
     Span visible = s;
-    if (!visible_part(visible, z, depth_ + row)) {
+    if (!visible_part(visible, z, depth_row)) {
       ++spans_hidden_;
       return;
     }
@@ -149,7 +160,7 @@ class PixelWriter final {
     // The depth stepped from x0 to the first visible pixel, as the colours are: the same words as
     // without early depth.
     const std::int32_t skip = visible.first - visible.x0;
-    write_run(row, visible.first, visible.last, z + dz_ * skip, colours_ + skip);
+    write_run(row, depth_row, visible.first, visible.last, z + dz_ * skip, colours_ + skip);
   }
   void flush_counters() const {
     Counters& c = dev_.counters_;
@@ -177,13 +188,13 @@ class PixelWriter final {
     return true;
   }
   // Depth-tests and writes pixels [first, last) of a row: colours from `colours`, the depth z at
-  // `first` stepped per pixel.
-  void write_run(std::size_t row, std::int32_t first, std::int32_t last, std::int64_t z,
-                 const Rgb8* colours) {
+  // `first` stepped per pixel, the row's depth words at depth_row.
+  void write_run(std::size_t row, std::uint32_t* depth_row, std::int32_t first, std::int32_t last,
+                 std::int64_t z, const Rgb8* colours) {
     const std::int32_t n = last - first;
     pixels_shaded_ += static_cast<std::uint64_t>(n);
     const Run run{colours,
-                  depth_ + row,
+                  depth_row,
                   colour_ + row * bytes_per_pixel_,
                   counts_ != nullptr ? counts_ + row : nullptr,
                   z,
@@ -197,11 +208,12 @@ class PixelWriter final {
     pixels_written_ += exact_depth ? write_exact_(run) : write_saturating_(run);
   }
   // The same for a whole span whose colours the pixel loop computes.
-  void write_linear(std::size_t row, const Span& s, std::int64_t z, const LinearColours& colours) {
+  void write_linear(std::size_t row, std::uint32_t* depth_row, const Span& s, std::int64_t z,
+                    const LinearColours& colours) {
     const std::int32_t n = s.x1 - s.x0;
     pixels_shaded_ += static_cast<std::uint64_t>(n);
     const LinearRun run{
-        {nullptr, depth_ + row, colour_ + row * bytes_per_pixel_, nullptr, z, dz_, s.x0, s.x1},
+        {nullptr, depth_row, colour_ + row * bytes_per_pixel_, nullptr, z, dz_, s.x0, s.x1},
         colours};
     const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
                              depth_in_range((z + dz_ * (n - 1)) >> ScreenPlane::kStepFrac);
@@ -340,6 +352,7 @@ class PixelWriter final {
   std::size_t width_ = 0, bytes_per_pixel_ = 3;
   Rgb8* colours_ = nullptr;  // the method's span buffer
   std::uint32_t* depth_ = nullptr;
+  std::size_t depth_row_stride_ = 0;  // the width, or 0 without a depth buffer (one row)
   std::uint8_t* colour_ = nullptr;
   std::uint8_t* counts_ = nullptr;  // null unless the write counts are on
   Loop write_exact_ = nullptr, write_saturating_ = nullptr;
@@ -375,7 +388,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
   n += align8(std::size_t{cap.max_vertices} * sizeof(CachedVertex));
   n += align8(std::size_t{cap.max_indices} * sizeof(std::uint32_t));
   n += align8(pixels * bytes_per_pixel(vp.format));
-  n += align8(pixels * sizeof(std::uint32_t));
+  n += align8(depth_words(vp) * sizeof(std::uint32_t));
   if (vp.write_count) n += align8(pixels);
   n += align8(std::size_t{vp.width} * sizeof(Rgb8));  // one span: at most the viewport's width
   n += align8(levels_bytes(m, cap));
@@ -404,7 +417,7 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
   s.off_colour = o;
   o += align8(pixels * bytes_per_pixel(vp.format));
   s.off_depth = o;
-  o += align8(pixels * sizeof(std::uint32_t));
+  o += align8(depth_words(vp) * sizeof(std::uint32_t));
   s.off_counts = o;
   if (vp.write_count) o += align8(pixels);
   s.off_span = o;
@@ -620,7 +633,8 @@ void Device::clear_regions(Rgb8 colour) {
   }
   for (std::size_t y = 1; y < s.viewport.height; ++y) std::memcpy(c + y * row, c, row);
   static_assert(kDepthFar == 0xffffffffu, "the depth fill sets every byte");
-  std::memset(region<std::uint32_t>(s.off_depth), 0xff, pixels * sizeof(std::uint32_t));
+  std::memset(region<std::uint32_t>(s.off_depth), 0xff,
+              depth_words(s.viewport) * sizeof(std::uint32_t));
   if (s.viewport.write_count) std::memset(region<std::uint8_t>(s.off_counts), 0, pixels);
 }
 
@@ -818,7 +832,9 @@ FramebufferView Device::framebuffer() const {
 }
 
 const std::uint32_t* Device::depth_buffer() const {
-  return state_.viewport_set ? region<std::uint32_t>(state_.off_depth) : nullptr;
+  return state_.viewport_set && state_.viewport.depth_buffer
+             ? region<std::uint32_t>(state_.off_depth)
+             : nullptr;
 }
 
 const std::uint8_t* Device::write_counts() const {

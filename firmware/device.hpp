@@ -10,7 +10,8 @@
 //   cache      max_vertices x CachedVertex    (per-draw transformed and projected vertices)
 //   indices    max_indices  x uint32
 //   colour     width x height x 3 (RGB888) or 2 (RGB565, little-endian 5:6:5)
-//   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping)
+//   depth      width x height x uint32        (see docs/CONVENTIONS.md for the mapping; one row
+//                                              only when ViewportCmd::depth_buffer is false)
 //   counts     width x height x uint8         (only if ViewportCmd::write_count)
 //   span       width x Rgb8                   (a method's output for one span)
 //   levels     max_vertices x VertexLevels    (per-draw lit colours, only for a method that
@@ -28,7 +29,9 @@
 // Depth buffer: 32-bit. NDC z in [-1, 1] maps to [0, 2^32 - 1]; 16 bits would leave a
 // perspective camera with far/near = 1000 less than one depth step per 1/1000 of the depth
 // range near the far plane (z-fighting on the teapot), and the 4096^2 budget is dominated by
-// the colour buffer anyway.
+// the colour buffer anyway. Without it (ViewportCmd::depth_buffer false: a part whose RAM holds
+// a colour buffer and little more) the depth test passes every pixel: the back-face culling of a
+// closed convex mesh is enough, a mesh that hides parts of itself needs the buffer.
 #pragma once
 
 #include <cstddef>
@@ -79,7 +82,7 @@ struct FramebufferView {
 // (opcode | payload_words << 16) followed by its payload. Payload layouts (all words are
 // uint32; Q values are their raw two's-complement bits):
 enum class Opcode : std::uint16_t {
-  kSetViewport = 1,        // width, height, format, write_count(0/1)                    4
+  kSetViewport = 1,        // width, height, format, flags (bit 0 counts, bit 1 no depth)  4
   kSetBufferCapacity = 2,  // max_vertices, max_indices                                  2
   kSetModelView = 3,       // 16 Q15.16, column-major m[col][row]                        16
   kSetProjection = 4,      // 16 Q15.16, column-major                                    16
@@ -144,7 +147,7 @@ class Device {
   const DeviceState& state() const { return state_; }
   const Counters& counters() const { return counters_; }
   FramebufferView framebuffer() const;
-  const std::uint32_t* depth_buffer() const;  // nullptr before set_viewport
+  const std::uint32_t* depth_buffer() const;  // nullptr before set_viewport, or without one
   const std::uint8_t* write_counts() const;   // nullptr unless enabled: writes per pixel
                                               // since clear, saturating at 255
 

@@ -94,6 +94,10 @@ struct ViewportCmd {
   std::uint32_t width = 0, height = 0;
   PixelFormat format = PixelFormat::kRgb888;
   bool write_count = false;  // keep a per-pixel count of writes this frame (tests, metrics)
+  // false: no depth buffer in the memory block (4 bytes per pixel saved, one row kept for the
+  // pixel loops' stores); the depth test then passes every pixel, as if it were off (OpenGL's
+  // rule without a depth buffer), whatever set_depth_test says.
+  bool depth_buffer = true;
 };
 struct BufferCapacityCmd {
   std::uint32_t max_vertices = 0, max_indices = 0;

@@ -67,8 +67,9 @@ void CommandWriter::matrix(fw::Opcode op, const fw::Mat4& m) {
 
 void CommandWriter::set_viewport(const fw::ViewportCmd& c) {
   header(fw::Opcode::kSetViewport, 4);
-  words_.insert(words_.end(),
-                {c.width, c.height, static_cast<std::uint32_t>(c.format), c.write_count ? 1u : 0u});
+  // The flags word: bit 0 write counts, bit 1 no depth buffer (docs/CONVENTIONS.md).
+  const std::uint32_t flags = (c.write_count ? 1u : 0u) | (c.depth_buffer ? 0u : 2u);
+  words_.insert(words_.end(), {c.width, c.height, static_cast<std::uint32_t>(c.format), flags});
 }
 
 void CommandWriter::set_buffer_capacity(const fw::BufferCapacityCmd& c) {
@@ -165,7 +166,8 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
 }
 
 std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
-  fw::ViewportCmd vp{1, 1, fw::PixelFormat::kRgb888, false};
+  fw::ViewportCmd vp{1, 1, fw::PixelFormat::kRgb888, false, false};
+  bool viewport_seen = false;
   fw::BufferCapacityCmd cap{0, 0};
   for (std::size_t at = 0; at < words.size();) {
     const std::uint32_t op = words[at] & 0xffffu, len = words[at] >> 16;
@@ -176,7 +178,9 @@ std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
         p[0] <= fw::kMaxDimension && p[1] <= fw::kMaxDimension) {
       vp.width = std::max(vp.width, p[0]);
       vp.height = std::max(vp.height, p[1]);
-      vp.write_count = vp.write_count || p[3] == 1;
+      vp.write_count = vp.write_count || (p[3] & 1u) != 0;
+      vp.depth_buffer = vp.depth_buffer || (p[3] & 2u) == 0;  // one viewport with depth: room
+      viewport_seen = true;
     }
     if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2 &&
         p[0] <= (1u << 24) && p[1] <= (1u << 26)) {
@@ -185,6 +189,7 @@ std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
     }
     at += 1 + std::size_t{len};
   }
+  if (!viewport_seen) vp.depth_buffer = true;
   return fw::Device::memory_required(vp, cap);
 }
 

@@ -163,8 +163,9 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
   ConversionReport report;
   if (scene.width <= 0 || scene.height <= 0)
     reject(scene, "/resolution", "width and height must be positive");
+  // Without a depth buffer the frame's coverage (read_frame) comes from the write counts.
   p.viewport = {static_cast<std::uint32_t>(scene.width), static_cast<std::uint32_t>(scene.height),
-                fw::PixelFormat::kRgb888, /*write_count=*/false};
+                fw::PixelFormat::kRgb888, /*write_count=*/!scene.depth_buffer, scene.depth_buffer};
   p.projection = to_device_matrix(projection_matrix(scene.camera, scene.width, scene.height),
                                   "projection", report);
   p.eye = eye_at_infinity(scene.camera) ? fw::EyeMode::kInfinite : fw::EyeMode::kFinite;
@@ -352,9 +353,15 @@ DeviceFrame read_frame(const fw::Device& device) {
   // was written exactly when its depth word is below far. The write counts would say the same at
   // a cost in every pixel loop, so they stay off (docs/DECISIONS.md, "Pipeline"). (A replayed
   // stream that turns the depth test off gets this coverage too; only the tests read it.)
+  // Without a depth buffer (DeviceRenderer turns the write counts on then) a pixel was written
+  // when its count is not zero; a replayed stream with neither counts every pixel as covered.
   const std::uint32_t* depth = device.depth_buffer();
-  f.covered.assign(pixels, 0);
-  for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = depth[i] != fw::kDepthFar ? 1 : 0;
+  const std::uint8_t* counts = device.write_counts();
+  f.covered.assign(pixels, 1);
+  if (depth != nullptr)
+    for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = depth[i] != fw::kDepthFar ? 1 : 0;
+  else if (counts != nullptr)
+    for (std::size_t i = 0; i < pixels; ++i) f.covered[i] = counts[i] != 0 ? 1 : 0;
   f.counters = counter_snapshot(device.counters());
   return f;
 }

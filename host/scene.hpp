@@ -107,6 +107,9 @@ struct Scene {
   int budget = 1;
   glm::dvec3 background{0, 0, 0};
   bool cull_backfaces = true;
+  // false: the device lays out no depth buffer (ViewportCmd::depth_buffer; the CLI's
+  // --no-depth-buffer): enough for a closed convex mesh with back faces culled.
+  bool depth_buffer = true;
 };
 
 // Light in eye space, as the reference and the device use it.

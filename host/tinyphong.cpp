@@ -44,6 +44,7 @@ struct SceneOptions {
   std::string size;  // "WxH"
   double rotate_deg = 0;
   bool specular_only = false;
+  bool no_depth_buffer = false;
 };
 
 // --budget, for the commands that run the device (render, record).
@@ -53,6 +54,13 @@ void add_budget_option(CLI::App* cmd, SceneOptions& o) {
                   "error budget in output levels for kb-adaptive, 1.." + std::to_string(most) +
                       " (default: the scene's, else 1)")
       ->check(CLI::Range(1, most));
+}
+
+// --no-depth-buffer, for the commands that run the device (render, record).
+void add_depth_buffer_option(CLI::App* cmd, SceneOptions& o) {
+  cmd->add_flag("--no-depth-buffer", o.no_depth_buffer,
+                "lay out no depth buffer (4 bytes per pixel less; the depth test passes every "
+                "pixel: enough for a closed convex mesh, docs/TARGET.md)");
 }
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
@@ -70,6 +78,7 @@ Scene load(const SceneOptions& o) {
   if (!o.method.empty()) s.method = o.method;
   if (o.budget != 0) s.budget = o.budget;
   if (o.specular_only) keep_specular_only(s);
+  if (o.no_depth_buffer) s.depth_buffer = false;
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;
@@ -330,20 +339,22 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
                 std::string(method_name(*same));
   }
   std::cout << "Device memory block in bytes (Device::memory_required), " << vertices
-            << " vertices and " << indices << " indices, depth buffer, no write counts\n\n";
-  std::cout << "| resolution | format |";
+            << " vertices and " << indices << " indices, no write counts\n\n";
+  std::cout << "| resolution | format | depth buffer |";
   for (const Method m : columns) std::cout << " " << method_name(m) << " |";
-  std::cout << "\n|---|---|";
+  std::cout << "\n|---|---|---|";
   for (std::size_t i = 0; i < columns.size(); ++i) std::cout << "---:|";
   std::cout << "\n";
   for (const auto& size : sizes)
-    for (const auto& format : formats) {
-      const tp::fw::ViewportCmd vp{size.w, size.h, format.format, false};
-      std::cout << "| " << size.w << "x" << size.h << " | " << format.name << " |";
-      for (const Method m : columns)
-        std::cout << " " << tp::fw::Device::memory_required(vp, cap, m) << " |";
-      std::cout << "\n";
-    }
+    for (const auto& format : formats)
+      for (const bool depth : {true, false}) {
+        const tp::fw::ViewportCmd vp{size.w, size.h, format.format, false, depth};
+        std::cout << "| " << size.w << "x" << size.h << " | " << format.name << " | "
+                  << (depth ? "yes" : "no") << " |";
+        for (const Method m : columns)
+          std::cout << " " << tp::fw::Device::memory_required(vp, cap, m) << " |";
+        std::cout << "\n";
+      }
   std::cout << "\nsizeof(Device) = " << sizeof(tp::fw::Device)
             << " bytes, outside the block; method state in the block:";
   for (const Method m : columns)
@@ -434,6 +445,7 @@ int main(int argc, char** argv) {
   add_scene_options(render, render_opts);
   render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)");
   add_budget_option(render, render_opts);
+  add_depth_buffer_option(render, render_opts);
   render->add_option("-o,--output", render_out, "PNG file to write");
   render->add_flag("--compare", render_compare,
                    "also render the double reference and print the error metrics");
@@ -474,6 +486,7 @@ int main(int argc, char** argv) {
                      "rotate the objects about the world y axis (degrees)");
   record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
   add_budget_option(record, rec.options);
+  add_depth_buffer_option(record, rec.options);
   record->add_option("-o,--output", rec.out, ".tpcmd file to write (one scene)");
   record->add_option("--dir", rec.dir, "write DIR/<scene>.tpcmd for each scene")
       ->check(CLI::ExistingDirectory);

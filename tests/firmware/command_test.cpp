@@ -332,6 +332,10 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
   expect_stream_refused("flag 2", Error::kBadArgument, {command_header(Opcode::kSetCulling, 1), 2});
   expect_stream_refused("viewport flag 5", Error::kBadArgument,
                         {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 5});
+  expect_stream_refused("viewport flag 4", Error::kBadArgument,
+                        {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 4});
+  expect_stream_refused("viewport flag 2^31", Error::kBadArgument,
+                        {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 1u << 31});
   expect_stream_refused("method 10 (unassigned)", Error::kUnknownMethod,
                         {command_header(Opcode::kSetMethod, 1), 10});
   // A vertex upload whose second chunk holds a bad normal: the first 64 vertices must not land.

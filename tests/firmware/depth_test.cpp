@@ -1,6 +1,8 @@
 // Depth test and clear: nearer wins in either drawing order, equal depth keeps the first
 // (strictly-less test), the depth word mapping, and that a depth-tested sphere with culling off
-// gives the same image as culling on.
+// gives the same image as culling on. Without a depth buffer (ViewportCmd::depth_buffer false):
+// the block needs one row of depth words, the test passes every pixel, and the image is the
+// depth-test-off image.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,9 +28,13 @@ Mesh two_quads(double z_first, double z_second) {
 }
 
 // Draws the first quad in colour A (material colour), the second in colour B.
-Rgb8 centre_after(double z_first, double z_second) {
+Rgb8 centre_after(double z_first, double z_second, bool depth_buffer = true,
+                  bool depth_test = true) {
   Rig rig(32, 32);
   auto& d = rig.dev;
+  EXPECT_EQ(d.set_viewport(ViewportCmd{32, 32, PixelFormat::kRgb888, true, depth_buffer}),
+            Error::kOk);
+  EXPECT_EQ(d.set_depth_test(depth_test), Error::kOk);
   const Mesh m = two_quads(z_first, z_second);
   EXPECT_EQ(d.set_method(Method::kFlat), Error::kOk);
   LightCmd l;
@@ -197,6 +203,68 @@ TEST(EarlyDepth, HiddenSpansAndEndsAreNotShaded) {
     else
       EXPECT_EQ(half.shaded, half.written + near.written);
   }
+}
+
+TEST(Depth, WithoutABufferEveryPixelPasses) {
+  // The later quad wins whatever its depth, as with the test off.
+  EXPECT_EQ(centre_after(-0.5, 0.5, false).b, 255);
+  EXPECT_EQ(centre_after(0.5, -0.5, false).b, 255);
+  EXPECT_EQ(centre_after(0.25, 0.25, false).b, 255);
+  EXPECT_EQ(centre_after(-0.5, 0.5, true, false).b, 255);
+}
+
+TEST(Depth, WithoutABufferTheBlockHoldsOneRow) {
+  const BufferCapacityCmd cap{64, 192};
+  const ViewportCmd with{40, 30, PixelFormat::kRgb565, false, true};
+  const ViewportCmd without{40, 30, PixelFormat::kRgb565, false, false};
+  const std::size_t a = Device::memory_required(with, cap, Method::kGouraud);
+  const std::size_t b = Device::memory_required(without, cap, Method::kGouraud);
+  EXPECT_EQ(a - b, (40u * 30u - 40u) * sizeof(std::uint32_t));  // both multiples of 8
+  // A block of exactly that size takes the viewport without depth and refuses the one with it,
+  // changing nothing.
+  std::vector<std::byte> memory(b);
+  Device d(memory);
+  ASSERT_EQ(d.set_buffer_capacity(cap), Error::kOk);
+  ASSERT_EQ(d.set_method(Method::kGouraud), Error::kOk);
+  ASSERT_EQ(d.set_viewport(without), Error::kOk);
+  EXPECT_EQ(d.depth_buffer(), nullptr);
+  EXPECT_EQ(d.set_viewport(with), Error::kOutOfMemory);
+  EXPECT_FALSE(d.state().viewport.depth_buffer);
+  EXPECT_EQ(d.depth_buffer(), nullptr);
+}
+
+// A closed convex mesh with back faces culled covers each pixel once: the depth buffer changes
+// nothing, byte for byte.
+TEST(Depth, ConvexMeshIsTheSameWithoutABuffer) {
+  const Mesh m = octasphere(3);
+  std::vector<std::uint8_t> images[2];
+  for (const bool depth : {true, false}) {
+    Rig rig(64, 48);
+    auto& d = rig.dev;
+    ASSERT_EQ(d.set_viewport(ViewportCmd{64, 48, PixelFormat::kRgb888, true, depth}), Error::kOk);
+    ASSERT_EQ(d.set_projection(to_mat4(glm::perspective(1.0, 64.0 / 48.0, 0.5, 10.0))), Error::kOk);
+    ASSERT_EQ(d.set_modelview(to_mat4(glm::translate(glm::dmat4(1), glm::dvec3(0, 0, -3)))),
+              Error::kOk);
+    LightCmd l;
+    l.type = LightType::kDirectional;
+    l.color[0] = l.color[1] = l.color[2] = q16(1);
+    l.direction = Vec3u{q30(0), q30(0.6), q30(0.8)};
+    ASSERT_EQ(d.set_light(l), Error::kOk);
+    MaterialCmd mat;
+    mat.color[0] = mat.color[1] = mat.color[2] = q30(0.8);
+    mat.kd = q30(0.7);
+    mat.ks = q30(0.3);
+    mat.n = 20;
+    ASSERT_EQ(d.set_material(mat), Error::kOk);
+    ASSERT_EQ(d.set_method(Method::kPhong), Error::kOk);
+    ASSERT_EQ(d.clear(Rgb8{0, 0, 0}), Error::kOk);
+    ASSERT_EQ(rig.load(m), Error::kOk);
+    ASSERT_EQ(rig.draw_all(m), Error::kOk);
+    const FramebufferView fb = d.framebuffer();
+    images[depth ? 0 : 1].assign(fb.data, fb.data + std::size_t{fb.stride} * fb.height);
+    EXPECT_GT(d.counters().pixels_written, 500u);
+  }
+  EXPECT_EQ(images[0], images[1]);
 }
 
 }  // namespace
