@@ -63,17 +63,36 @@ std::uint32_t depth_word_unsaturated(std::int64_t z_q30) {
   return static_cast<std::uint32_t>((z_q30 + (std::int64_t{1} << 30)) * 2);
 }
 
+// The methods linked into this build: bit id of TP_FIRMWARE_METHODS for Method id (types.hpp).
+// Every method by default; a port to a small part links the few it ships (docs/TARGET.md,
+// "Footprint": the others' code then drops out at link time, since only their slot refers to
+// it), and set_method refuses the rest as it refuses an unassigned id.
+#ifndef TP_FIRMWARE_METHODS
+#define TP_FIRMWARE_METHODS (~0ull)
+#endif
+constexpr bool linked(Method m) {
+  return ((std::uint64_t{TP_FIRMWARE_METHODS} >> static_cast<std::uint32_t>(m)) & 1u) != 0;
+}
+
 // The registry's slots by id (firmware/registry.hpp), derived at compile time: the table's names
 // and descriptions stay out of the firmware's image. An id without a row (a reserved one of
-// types.hpp) has none: set_method refuses it.
+// types.hpp, or a method this build leaves out) has none: set_method refuses it.
 struct SlotRow {
   Method id;
   MethodSlot slot;
 };
+constexpr std::size_t kLinkedMethods = [] {
+  std::size_t n = 0;
+  for (const MethodInfo& m : kMethodTable) n += linked(m.id) ? 1u : 0u;
+  return n;
+}();
+static_assert(linked(Method::kGouraud),
+              "a device starts with Gouraud: TP_FIRMWARE_METHODS needs it");
 constexpr auto kSlots = [] {
-  std::array<SlotRow, std::size(kMethodTable)> rows{};
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    rows[i] = {kMethodTable[i].id, kMethodTable[i].slot};
+  std::array<SlotRow, kLinkedMethods> rows{};
+  std::size_t i = 0;
+  for (const MethodInfo& m : kMethodTable)
+    if (linked(m.id)) rows[i++] = {m.id, m.slot};
   return rows;
 }();
 MethodSlot method_slot(Method m) {

@@ -27,7 +27,7 @@ enum class Error : std::uint32_t {
   kNotUnit = 7,           // a normal / direction whose squared length is not 1 within tolerance
   kOutOfRange = 8,        // a matrix entry, coordinate or transformed value not representable
   kTooManyLights = 9,     // light index >= kMaxLights
-  kUnknownMethod = 10,    // method id not implemented (reserved ids included)
+  kUnknownMethod = 10,    // method id not implemented (reserved ids included) or not linked
   kNoViewport = 11,       // draw/clear before set_viewport
 };
 
