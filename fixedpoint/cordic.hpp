@@ -19,6 +19,7 @@
 // the exact value (measured figures in docs/ACCURACY.md).
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -100,11 +101,35 @@ constexpr wide_t step_shift(wide_t v, int i) {
   else
     return v >> i;
 }
+
+// atan(2^-i) in Q60. From step kAtanTabled on, atan t = t − t³/3 + … rounds to t itself
+// (2^(60−3i)/3 < 1/2), so those steps take 2^(60−i) and only the first kAtanTabled entries of
+// the generated table are linked (160 bytes of read-only data instead of 496: docs/TARGET.md,
+// "Footprint"); the static_assert holds the rule to every entry the steps use.
+inline constexpr int kAtanTabled = 20;
+inline constexpr std::array<wide_t, kAtanTabled> kAtanHead = [] {
+  std::array<wide_t, kAtanTabled> a{};
+  for (int i = 0; i < kAtanTabled; ++i)
+    a[static_cast<std::size_t>(i)] = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+  return a;
+}();
+constexpr bool atan_tail_is_a_shift() {
+  for (int i = kAtanTabled; i < kCordicIterations; ++i)
+    if (tables::cordic_atan_q60[static_cast<std::size_t>(i)] != wide_t{1} << (60 - i)) return false;
+  return true;
+}
+static_assert(atan_tail_is_a_shift(), "atan(2^-i) rounds to 2^-i in Q60 from kAtanTabled on");
+
+// The table's entry below kAtanTabled, the shift from there on.
+constexpr wide_t atan_q60(int i) {
+  return i < kAtanTabled ? kAtanHead[static_cast<std::size_t>(i)] : wide_t{1} << (60 - i);
+}
+
 template <bool kRounded>
 constexpr void vectoring_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
   for (int i = 0; i < n; ++i) {
     const wide_t xs = step_shift<kRounded>(x, i), ys = step_shift<kRounded>(y, i);
-    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+    const wide_t a = atan_q60(i);
     if (y >= 0) {  // rotate clockwise: drive y to zero
       x += ys;
       y -= xs;
@@ -120,7 +145,7 @@ template <bool kRounded>
 constexpr void rotation_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
   for (int i = 0; i < n; ++i) {
     const wide_t xs = step_shift<kRounded>(x, i), ys = step_shift<kRounded>(y, i);
-    const wide_t a = tables::cordic_atan_q60[static_cast<std::size_t>(i)];
+    const wide_t a = atan_q60(i);
     if (z >= 0) {  // rotate counter-clockwise toward z = 0
       x -= ys;
       y += xs;

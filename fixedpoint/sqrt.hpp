@@ -65,11 +65,12 @@ constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
 // round_up and over, from a 192-entry seed (2^-8 relative) and two integer Newton steps
 // r' = (r + u / r) / 2 (2^-17, then 2^-35 relative: within one of the root below 2^32), then
 // an exact correction by r² against u. Radicands below 2^16 take the digit-by-digit root.
-inline constexpr std::array<std::uint16_t, 256> isqrt_seed = [] {
-  std::array<std::uint16_t, 256> t{};
+// Entry i − 64 for top bits i in [64, 256).
+inline constexpr std::array<std::uint16_t, 192> isqrt_seed = [] {
+  std::array<std::uint16_t, 192> t{};
   for (int i = 64; i < 256; ++i) {  // sqrt(i + 1/2) · 2^8 = sqrt((2i + 1) · 2^15)
     const RootResult r = isqrt_shifted(static_cast<u64>(2 * i + 1), 15, u64{1} << 20);
-    t[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(r.root);
+    t[static_cast<std::size_t>(i - 64)] = static_cast<std::uint16_t>(r.root);
   }
   return t;
 }();
@@ -78,7 +79,7 @@ constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   const int b = 64 - std::countl_zero(u);  // 17..64
   const int sh = (b - 7) & ~1;             // even, so that top = u >> sh is in [64, 256)
   const u64 top = u >> sh;
-  u64 r = (u64{isqrt_seed[static_cast<std::size_t>(top)]} << (sh / 2)) >> 8;
+  u64 r = (u64{isqrt_seed[static_cast<std::size_t>(top - 64)]} << (sh / 2)) >> 8;
   if (r == 0) r = 1;
   r = (r + u / r) >> 1;
   r = (r + u / r) >> 1;

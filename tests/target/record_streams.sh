@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Records one method's command stream of every given scene (build step of tests/target):
 #   record_streams.sh TINYPHONG SCENES_DIR SIZE METHOD OUT_DIR SCENE...
-# writes OUT_DIR/METHOD/SCENE.tpcmd with one `tinyphong record` run (its start-up, not the
+# (SIZE WxH, or "own": each scene's own resolution) writes OUT_DIR/METHOD/SCENE.tpcmd with one `tinyphong record` run (its start-up, not the
 # recording, is what costs: one run per method, not per stream).
 set -euo pipefail
 tp=$1 scenes=$2 size=$3 method=$4 out=$5
@@ -9,4 +9,6 @@ shift 5
 mkdir -p "$out/$method"
 files=()
 for scene in "$@"; do files+=("$scenes/$scene.json"); done
-"$tp" record "${files[@]}" --method "$method" --size "$size" --dir "$out/$method" >/dev/null
+size_opt=(--size "$size")
+[ "$size" = own ] && size_opt=()
+"$tp" record "${files[@]}" --method "$method" "${size_opt[@]}" --dir "$out/$method" >/dev/null
