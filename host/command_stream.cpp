@@ -166,8 +166,9 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
 }
 
 std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
+  // Without a viewport command the 1x1 block's depth region is one word with or without a
+  // depth buffer; with any, a viewport that keeps the buffer needs it.
   fw::ViewportCmd vp{1, 1, fw::PixelFormat::kRgb888, false, false};
-  bool viewport_seen = false;
   fw::BufferCapacityCmd cap{0, 0};
   for (std::size_t at = 0; at < words.size();) {
     const std::uint32_t op = words[at] & 0xffffu, len = words[at] >> 16;
@@ -179,8 +180,7 @@ std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
       vp.width = std::max(vp.width, p[0]);
       vp.height = std::max(vp.height, p[1]);
       vp.write_count = vp.write_count || (p[3] & 1u) != 0;
-      vp.depth_buffer = vp.depth_buffer || (p[3] & 2u) == 0;  // one viewport with depth: room
-      viewport_seen = true;
+      vp.depth_buffer = vp.depth_buffer || (p[3] & 2u) == 0;
     }
     if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2 &&
         p[0] <= (1u << 24) && p[1] <= (1u << 26)) {
@@ -189,7 +189,6 @@ std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
     }
     at += 1 + std::size_t{len};
   }
-  if (!viewport_seen) vp.depth_buffer = true;
   return fw::Device::memory_required(vp, cap);
 }
 
