@@ -3,8 +3,10 @@
 # every paper scene (1 light, all methods) and the multi-light variants (2, 4, 8 lights).
 # Usage: bash scripts/results.sh [--reps N] [--no-instructions]
 #   --reps N: rounds per measurement (default 5; the machine and date go in the file).
-#   The last section, instructions per pixel written, comes from scripts/instructions.sh
-#   (callgrind, a few minutes); --no-instructions leaves it out.
+#   The section on instructions per pixel written comes from scripts/instructions.sh
+#   (callgrind, a few minutes); --no-instructions leaves it out. The last, the Cortex-M3 under
+#   QEMU, from scripts/target-cost.sh --full (about 90 s; left out without qemu-system-arm or
+#   the release tree's target images).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reps=5
@@ -250,6 +252,20 @@ instruction on any x86-64 machine with the same compiler). \`bash scripts/instru
 
 EOF
     bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive
+  fi
+  if command -v qemu-system-arm >/dev/null && [ -d build/release/target ]; then
+    cat <<EOF
+
+## On a Cortex-M3 (QEMU)
+
+The device's firmware cross-compiled for the Cortex-M3 (-O2) and run under
+\`qemu-system-arm -M mps2-an385 -icount shift=0\`, which counts guest instructions: every method
+on every scene at the scenes' own resolutions, with the ratio to Gouraud, and the calls of the
+64-bit division helpers per pixel written. \`bash scripts/target-cost.sh --full\`, $(date +%Y-%m-%d);
+docs/TARGET.md explains the measurement and gives the same at 160x120.
+
+EOF
+    bash scripts/target-cost.sh --full
   fi
 } > "$out.tmp"
 mv "$out.tmp" "$out"
