@@ -77,9 +77,12 @@ constexpr bool linked(Method m) {
 // The registry's slots by id (firmware/registry.hpp), derived at compile time: the table's names
 // and descriptions stay out of the firmware's image. An id without a row (a reserved one of
 // types.hpp, or a method this build leaves out) has none: set_method refuses it.
+// A row is 12 bytes on a 32-bit part: the registry's MethodSlot beside its id would pad to 16.
 struct SlotRow {
-  Method id;
-  MethodSlot slot;
+  std::uint32_t bytes;
+  ShadingMethod* (*construct)(void* where);
+  std::uint8_t id;  // the Method (TP_FIRMWARE_METHODS's mask keeps ids below 64)
+  MethodTraits traits;
 };
 constexpr std::size_t kLinkedMethods = [] {
   std::size_t n = 0;
@@ -92,17 +95,30 @@ constexpr auto kSlots = [] {
   std::array<SlotRow, kLinkedMethods> rows{};
   std::size_t i = 0;
   for (const MethodInfo& m : kMethodTable)
-    if (linked(m.id)) rows[i++] = {m.id, m.slot};
+    if (linked(m.id))
+      rows[i++] = {static_cast<std::uint32_t>(m.slot.bytes), m.slot.construct,
+                   static_cast<std::uint8_t>(m.id), m.slot.traits};
   return rows;
 }();
+static_assert(sizeof(void*) != 4 || sizeof(SlotRow) == 12);
+static_assert(
+    [] {
+      for (const MethodInfo& m : kMethodTable)
+        if (m.slot.bytes > 0xffffffffu || static_cast<std::uint32_t>(m.id) > 0xffu) return false;
+      return true;
+    }(),
+    "a row holds a method's size in 32 bits and its id in 8");
 MethodSlot method_slot(Method m) {
   for (const SlotRow& row : kSlots)
-    if (row.id == m) return row.slot;
+    if (row.id == static_cast<std::uint32_t>(m))
+      return MethodSlot{row.bytes, row.construct, row.traits};
   return MethodSlot{};
 }
 // The lit-vertex cache's bytes for method m (0 for a method that does not light vertices).
 std::size_t levels_bytes(Method m, const BufferCapacityCmd& cap) {
-  return method_slot(m).lights_vertices ? std::size_t{cap.max_vertices} * sizeof(VertexLevels) : 0;
+  return method_slot(m).traits.lights_vertices
+             ? std::size_t{cap.max_vertices} * sizeof(VertexLevels)
+             : 0;
 }
 // A normal the draw has not transformed yet: no unit normal has this raw x (|x| <= 2^30).
 constexpr std::int32_t kNormalPending = std::numeric_limits<std::int32_t>::min();
@@ -139,14 +155,18 @@ class PixelWriter final {
     // The method is the draw's: whether it takes early depth, and whether its colours are computed
     // in the pixel loop (not with the write counts: the linear loops leave them out), is decided
     // once.
-    early_depth_ = depth_test && d.method().skips_hidden_pixels();
-    linear_ = d.method().colours_linear() && counts_ == nullptr && !early_depth_;
+    const MethodTraits traits = method_slot(st.method).traits;
+    edges_ = traits.reads_edge_positions ? EdgeParameters::kWith : EdgeParameters::kWithout;
+    early_depth_ = depth_test && traits.skips_hidden_pixels;
+    linear_ = traits.colours_linear && counts_ == nullptr && !early_depth_;
     if (linear_) {
       write_linear_exact_ = kLinearLoops[1][variant >> 1];
       write_linear_saturating_ = kLinearLoops[0][variant >> 1];
       write_constant_ = kConstantLoops[variant >> 1];
     }
   }
+  // Whether rasterize() steps the edges' parameters for the method's spans.
+  EdgeParameters edge_parameters() const { return edges_; }
   // The next triangle, set up by method m.
   void begin(const Triangle& t, ShadingMethod& m) {
     tri_ = &t;
@@ -365,7 +385,8 @@ class PixelWriter final {
   Device& dev_;
   const Triangle* tri_ = nullptr;
   ShadingMethod* method_ = nullptr;
-  bool early_depth_ = false;  // depth test on and the method skips_hidden_pixels()
+  EdgeParameters edges_ = EdgeParameters::kWithout;  // the method's kReadsEdgePositions
+  bool early_depth_ = false;  // depth test on and the method's kSkipsHiddenPixels
   ScreenPlane zplane_;
   std::int64_t dz_ = 0;
   std::size_t width_ = 0, bytes_per_pixel_ = 3;
@@ -375,7 +396,7 @@ class PixelWriter final {
   std::uint8_t* colour_ = nullptr;
   std::uint8_t* counts_ = nullptr;  // null unless the write counts are on
   Loop write_exact_ = nullptr, write_saturating_ = nullptr;
-  bool linear_ = false;  // the method's colours_linear(), and no write counts
+  bool linear_ = false;  // the method's kColoursLinear, and no write counts
   LinearLoop write_linear_exact_ = nullptr, write_linear_saturating_ = nullptr;
   LinearLoop write_constant_ = nullptr;
   std::uint64_t spans_ = 0, spans_hidden_ = 0, pixels_shaded_ = 0, pixels_written_ = 0;
@@ -417,7 +438,8 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
 
 std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityCmd& cap) {
   std::size_t largest = 0;
-  for (const SlotRow& row : kSlots) largest = std::max(largest, memory_required(vp, cap, row.id));
+  for (const SlotRow& row : kSlots)
+    largest = std::max(largest, memory_required(vp, cap, static_cast<Method>(row.id)));
   return largest;
 }
 
@@ -703,7 +725,7 @@ Error Device::draw(const DrawCmd& cmd) {
     cache[i].v.normal.x = q1_30::from_raw(kNormalPending);
     if (levels != nullptr) levels[i].c[0] = -1;
   }
-  if (method_slot(state_.method).object_centre) set_object_centre(idx, cmd.count);
+  if (method_slot(state_.method).traits.object_centre) set_object_centre(idx, cmd.count);
   PixelWriter writer(*this);
   for (std::uint32_t t = 0; t < cmd.count; t += 3) draw_triangle(idx + t, levels, writer);
   writer.flush_counters();
@@ -839,7 +861,7 @@ void Device::draw_fan_triangle(const ShadeVertex& a, const ShadeVertex& b, const
   writer.begin(t, m);
   (void)rasterize(t, static_cast<std::int32_t>(state_.viewport.width),
                   static_cast<std::int32_t>(state_.viewport.height), writer,
-                  m.reads_edge_positions() ? EdgeParameters::kWith : EdgeParameters::kWithout);
+                  writer.edge_parameters());
 }
 
 FramebufferView Device::framebuffer() const {

@@ -7,8 +7,8 @@
 //   2. the rasterizer (raster.hpp) walks the edges in y and cuts spans in x (top-left rule);
 //   3. for each span the method's shade_span() writes one colour per pixel of [x0, x1).
 // Depth test and framebuffer writes are the pipeline's, after shade_span. Early depth: with the
-// depth test on, the pipeline first finds the span's visible pixels; a method that
-// skips_hidden_pixels() is asked for [first, last) only, and not called at all for a span with
+// depth test on, the pipeline first finds the span's visible pixels; a method that declares
+// kSkipsHiddenPixels is asked for [first, last) only, and not called at all for a span with
 // no visible pixel (docs/CONVENTIONS.md, "Early depth").
 //
 // Spans carry where their ends lie on the triangle's edges (which edge, parameter along it),
@@ -64,7 +64,7 @@ constexpr std::int64_t edge_function(const ShadeVertex& a, const ShadeVertex& b,
 // Where one end of a span lies: on the edge from vertex `from` to vertex `to` (from above to),
 // at parameter t in [0, 1] (Q1.30) measured from `from`, at the row's centre line. t costs a
 // division per end and row: the rasterizer fills it only for the methods that read it
-// (ShadingMethod::reads_edge_positions()); for the others it stays 0.
+// (kReadsEdgePositions); for the others it stays 0.
 struct EdgePos {
   std::uint8_t from = 0, to = 0;
   q1_30 t;
@@ -75,8 +75,8 @@ struct Span {
   std::int32_t x0 = 0, x1 = 0;  // pixels [x0, x1), x1 > x0, already inside the viewport
   EdgePos left, right;          // the span's ends on the triangle's edges (before the scissor)
   // The pixels the pipeline needs, x0 <= first < last <= x1: those outside fail the depth test.
-  // The rasterizer sets [x0, x1); early depth narrows it for the methods that
-  // skips_hidden_pixels(), which then need fill only out[first − x0 .. last − x0).
+  // The rasterizer sets [x0, x1); early depth narrows it for the methods that declare
+  // kSkipsHiddenPixels, which then need fill only out[first − x0 .. last − x0).
   std::int32_t first = 0, last = 0;
 };
 
@@ -113,27 +113,33 @@ struct LinearColours {
   std::int64_t c[3], dc[3];
 };
 
+// What a method class declares of itself, as static constants the registry reads at compile time
+// (firmware/registry.hpp, MethodTraits; constants, not virtual functions: no vtable entry and no
+// call per triangle). Each is false where the class does not declare it:
+//   kReadsEdgePositions  shade_span reads Span::left.t and right.t (see EdgePos).
+//   kSkipsHiddenPixels   shade_span shades only Span [first, last), each pixel exactly as it would
+//                        in the whole span (state stepped from x0 is advanced, not restarted), and
+//                        keeps nothing from one span for the next — so that early depth may narrow
+//                        a span and leave out one whose pixels are all hidden without changing any
+//                        pixel — and its pixels cost more than the depth tests that find the
+//                        visible ones (two per span). Flat and Gouraud do not: Gouraud with early
+//                        depth cost 180 instead of 169 instructions per pixel on the teapot
+//                        (docs/DECISIONS.md, "Early depth"). The methods that set up state across
+//                        spans (kb's y-coherent chunks) get every span whole too.
+//   kColoursLinear       every span's colours are linear in x (flat's constant, Gouraud's one
+//                        addition per channel per pixel): the pipeline asks linear_span() for them
+//                        instead of shade_span(), and computes them in its own pixel loop, with no
+//                        span buffer between.
+//   kLightsVertices      the method gets the draw's lit-vertex cache (Triangle::levels).
+//   kNeedsObjectCentre   the draw sets ShadeContext::object_centre for it.
 class ShadingMethod {
  public:
   // Per-triangle setup. Returns false to skip the triangle (counted as triangles_skipped).
   virtual bool setup(const Triangle& tri, const ShadeContext& ctx) = 0;
   // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0); for a method that
-  // skips_hidden_pixels(), of [s.first, s.last) only (the other entries are not read).
+  // declares kSkipsHiddenPixels, of [s.first, s.last) only (the other entries are not read).
   virtual void shade_span(const Span& s, Rgb8* out) = 0;
-  // Whether shade_span reads Span::left.t and right.t (see EdgePos).
-  virtual bool reads_edge_positions() const { return false; }
-  // Whether shade_span shades only Span [first, last), each pixel exactly as it would in the whole
-  // span (state stepped from x0 is advanced, not restarted), and keeps nothing from one span for
-  // the next — so that early depth may narrow a span and leave out one whose pixels are all
-  // hidden without changing any pixel — and whose pixels cost more than the depth tests that
-  // find the visible ones (two per span). Flat and Gouraud do not: Gouraud with early depth cost
-  // 180 instead of 169 instructions per pixel on the teapot (docs/DECISIONS.md, "Early depth"). The
-  // methods that set up state across spans (kb's y-coherent chunks) get every span whole too.
-  virtual bool skips_hidden_pixels() const { return false; }
-  // Whether every span's colours are linear in x (flat's constant, Gouraud's one addition per
-  // channel per pixel): then the pipeline asks linear_span() for them instead of shade_span(),
-  // and computes them in its own pixel loop, with no span buffer between.
-  virtual bool colours_linear() const { return false; }
+  // For a method whose class declares kColoursLinear (above): the span's colours.
   virtual LinearColours linear_span(const Span& s) {
     static_cast<void>(s);
     return LinearColours{};

@@ -18,7 +18,7 @@ class FlatMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool colours_linear() const override { return true; }
+  static constexpr bool kColoursLinear = true;
   LinearColours linear_span(const Span& s) override;
 
  private:
@@ -34,7 +34,7 @@ class GouraudMethod final : public ShadingMethod {
   static constexpr bool kLightsVertices = true;
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool colours_linear() const override { return true; }
+  static constexpr bool kColoursLinear = true;
   LinearColours linear_span(const Span& s) override;
 
  private:
@@ -58,7 +58,7 @@ class PhongMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool skips_hidden_pixels() const override { return true; }
+  static constexpr bool kSkipsHiddenPixels = true;
 
  private:
   PointShader point_;
@@ -78,7 +78,7 @@ class DuffMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool skips_hidden_pixels() const override { return true; }
+  static constexpr bool kSkipsHiddenPixels = true;
 
   // Fraction bits of the stepped normal: |N|² at twice that stays below 2^59 and its second
   // difference 2 Σ s² (|s| <= 2^30 per component after the planes' saturation) below 2^63.

@@ -37,15 +37,22 @@ struct MethodCapabilities {
   Fidelity many_lights = Fidelity::kExact;
 };
 
+// What a method class declares of itself (firmware/method.hpp, "What a method class declares"),
+// one bit each: the device keeps a row of these per linked method.
+struct MethodTraits {
+  bool lights_vertices : 1 = false;
+  bool object_centre : 1 = false;
+  bool reads_edge_positions : 1 = false;
+  bool skips_hidden_pixels : 1 = false;
+  bool colours_linear : 1 = false;
+};
+
 // Where a method's state lives: its bytes in the block's method region, and how to construct it
-// there (device.cpp). lights_vertices: the method gets the draw's lit-vertex cache
-// (VertexLevels per vertex, Triangle::levels); object_centre: the draw sets
-// ShadeContext::object_centre for it.
+// there (device.cpp); and its traits.
 struct MethodSlot {
   std::size_t bytes = 0;
   ShadingMethod* (*construct)(void* where) = nullptr;
-  bool lights_vertices = false;
-  bool object_centre = false;  // the draw sets ShadeContext::object_centre
+  MethodTraits traits;
 };
 
 namespace detail {
@@ -61,19 +68,15 @@ ShadingMethod* construct_at(void* where) {
 // The slot of method class T, constructed with kArgs (a mode, a flag).
 template <class T, auto... kArgs>
 constexpr MethodSlot slot_of() {
-  constexpr bool lights = [] {
-    if constexpr (requires { T::kLightsVertices; })
-      return T::kLightsVertices;
-    else
-      return false;
-  }();
-  constexpr bool centre = [] {
-    if constexpr (requires { T::kNeedsObjectCentre; })
-      return T::kNeedsObjectCentre;
-    else
-      return false;
-  }();
-  return MethodSlot{sizeof(T), detail::construct_at<T, kArgs...>, lights, centre};
+  MethodTraits traits;
+  if constexpr (requires { T::kLightsVertices; }) traits.lights_vertices = T::kLightsVertices;
+  if constexpr (requires { T::kNeedsObjectCentre; }) traits.object_centre = T::kNeedsObjectCentre;
+  if constexpr (requires { T::kReadsEdgePositions; })
+    traits.reads_edge_positions = T::kReadsEdgePositions;
+  if constexpr (requires { T::kSkipsHiddenPixels; })
+    traits.skips_hidden_pixels = T::kSkipsHiddenPixels;
+  if constexpr (requires { T::kColoursLinear; }) traits.colours_linear = T::kColoursLinear;
+  return MethodSlot{sizeof(T), detail::construct_at<T, kArgs...>, traits};
 }
 
 struct MethodInfo {

@@ -9,15 +9,15 @@
 //
 // How: the components are cut to 30 bits (as firmware/vecmath.hpp's normalize_wide does), the
 // squared length s (exact, < 3·2^60) is brought to t = s·2^-e in [2^30, 2^32) with e even, and
-// 1/sqrt(t / 2^32) in (1, 2] is taken from a 192-entry seed (Q2.30, relative error < 2^-9)
-// and two Newton steps r' = r (3 − T r²) / 2 in 64-bit products (error < 2^-28 after them).
+// 1/sqrt(t / 2^32) in (1, 2] is taken from the interpolated seed of fixedpoint/sqrt.hpp
+// (relative error < 2^-11.4) and two Newton steps r' = r (3 − T r²) / 2 in 64-bit products
+// (error < 2^-30 after them, below the products' truncation).
 // Precondition: |x|, |y|, |z| < 2^62.
 // Measured against the double-precision direction over 1,000,000 random vectors of every
-// magnitude (tests/fixedpoint/test_vec3.cpp, NormalizeFast): at most 1.81 LSB of Q1.30 per
-// component (1.7·10^-9), pinned at 2.5.
+// magnitude (tests/fixedpoint/test_vec3.cpp, NormalizeFast): at most 1.725 LSB of Q1.30 per
+// component (1.6·10^-9), pinned at 2.5.
 #pragma once
 
-#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -26,22 +26,6 @@
 #include "fixedpoint/vec3.hpp"
 
 namespace tp::fx {
-
-namespace detail {
-
-// round(2^30 / sqrt((i + 64.5) / 256)) for the 192 intervals of T = t / 2^32 in [1/4, 1).
-inline constexpr std::array<std::uint32_t, 192> rsqrt_fast_seed = [] {
-  std::array<std::uint32_t, 192> s{};
-  for (int i = 0; i < 192; ++i) {
-    // 2^30 · sqrt(512 / (2i + 129)) = sqrt(2^69 / (2i + 129)), by the exact integer root.
-    const u64 radicand = (u64{1} << 63) / static_cast<u64>(2 * i + 129);  // 2^69 / d · 2^-6
-    const RootResult r = isqrt_shifted(radicand, 6, u64{1} << 40);
-    s[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(r.root + (r.round_up ? 1u : 0u));
-  }
-  return s;
-}();
-
-}  // namespace detail
 
 // 1/√s of an integer 0 < s < 2^62 as a Q2.30 mantissa r in (2^30, 2^31] and a shift >= 1: for
 // an integer c of the units that s squares, (c·r) >> shift is c/√s in Q1.30 (|c·r| < 2^63 is
@@ -55,7 +39,7 @@ inline RsqrtFast rsqrt_fast(detail::u64 s) {
   int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
   e += e & 1;                                        // ... or [2^30, 2^31) for an even e
   const u64 t = e >= 0 ? s >> e : s << -e;
-  u64 r = detail::rsqrt_fast_seed[static_cast<std::size_t>((t >> 24) - 64)];  // Q2.30
+  u64 r = u64{detail::rsqrt_seed(static_cast<std::uint32_t>(t))} << 15;  // Q.15 -> Q2.30
   for (int it = 0; it < 2; ++it) {
     const u64 r2 = (r * r) >> 30;            // Q.30, <= 2^32
     const u64 tr2 = (t * r2) >> 32;          // T r² in Q.30, ~2^30 (t < 2^32, t·r2 ~ 2^62)

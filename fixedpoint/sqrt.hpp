@@ -4,8 +4,8 @@
 //                 cannot actually occur), by the digit-by-digit integer method on the exact
 //                 scaled radicand. x <= 0 -> To::zero() (documented: no NaN in integers).
 //                 Saturates to To::max() when the root does not fit To.
-//   rsqrt<To>(x): 1/sqrt(x) by Newton-Raphson r' = r (3 - y r^2) / 2 from a 48-entry seed
-//                 table (1.5 % seed error -> four quadratic steps reach the 2^-61 working
+//   rsqrt<To>(x): 1/sqrt(x) by Newton-Raphson r' = r (3 - y r^2) / 2 from the interpolated
+//                 seed below (2^-11.4 relative -> four quadratic steps reach the 2^-61 working
 //                 precision), carried in 64-bit Q2.62 with exact 128-bit products, then
 //                 rounded once into To. Error <= 0.5 LSB of To plus ~2^-59 relative (so 0.5
 //                 LSB for every To up to 32 bits; see docs/ACCURACY.md).
@@ -61,25 +61,40 @@ constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
   return r;
 }
 
-// The same for e = 0 (the common case: a Q2.60 square into Q1.30): the identical root,
-// round_up and over, from a 192-entry seed (2^-8 relative) and two integer Newton steps
-// r' = (r + u / r) / 2 (2^-17, then 2^-35 relative: within one of the root below 2^32), then
-// an exact correction by r² against u. Radicands below 2^16 take the digit-by-digit root.
-// Entry i − 64 for top bits i in [64, 256).
-inline constexpr std::array<std::uint16_t, 192> isqrt_seed = [] {
-  std::array<std::uint16_t, 192> t{};
-  for (int i = 64; i < 256; ++i) {  // sqrt(i + 1/2) · 2^8 = sqrt((2i + 1) · 2^15)
-    const RootResult r = isqrt_shifted(static_cast<u64>(2 * i + 1), 15, u64{1} << 20);
-    t[static_cast<std::size_t>(i - 64)] = static_cast<std::uint16_t>(r.root);
+// 1/√T for T = t·2^-32 in [1/4, 1), as Q.15 in (2^15, 2^16], by linear interpolation between
+// the 49 knots T_k = (16 + k)/64 (the knots' values rounded to Q.15 and stored less 2^15, so that
+// 2^16 fits 16 bits): relative error below 2^-11.4 (3.59·10^-4 measured, largest near T = 1/4;
+// tests/fixedpoint/test_arith.cpp, RsqrtSeed). One table of 98 bytes seeds the three roots:
+// rsqrt_core (four Newton steps), rsqrt_fast (two) and isqrt_plain (√u = u·(1/√u), two integer
+// Newton steps and a correction) — a table per root took 1,248 bytes (docs/DECISIONS.md).
+inline constexpr std::array<std::uint16_t, 49> rsqrt_knots = [] {
+  std::array<std::uint16_t, 49> t{};
+  for (int k = 0; k < 49; ++k) {  // 2^15/√((16 + k)/64) = √(2^36/(16 + k)) = √(2^62/(16 + k))·2^-13
+    const RootResult r = isqrt_shifted((u64{1} << 62) / static_cast<u64>(16 + k), 0, u64{1} << 40);
+    t[static_cast<std::size_t>(k)] =
+        static_cast<std::uint16_t>(((r.root + (1u << 12)) >> 13) - (1u << 15));
   }
   return t;
 }();
+constexpr std::uint32_t rsqrt_seed(std::uint32_t t) {        // 2^30 <= t < 2^32
+  const std::uint16_t* knot = &rsqrt_knots[(t >> 26) - 16];  // the knot below T, 0..47
+  const std::uint32_t frac = (t >> 10) & 0xffffu;            // T's place between knots, Q.16
+  // 1/√T falls: knot[0] >= knot[1]. Truncated, not rounded: one instruction fewer per seed.
+  return (1u << 15) + knot[0] - ((static_cast<std::uint32_t>(knot[0] - knot[1]) * frac) >> 16);
+}
+
+// The root for e = 0 (the common case: a Q2.60 square into Q1.30): the identical root, round_up
+// and over, from the seed u·(1/√u) (2^-11.4 relative; 2^-8 for radicands below 2^30, where the
+// shift drops bits of the root) and two integer Newton steps r' = (r + u / r) / 2 (2^-23.8, then
+// 2^-48 relative: within one of the root below 2^32), then an exact correction by r² against u.
+// Radicands below 2^16 take the digit-by-digit root.
 constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   if (u < (u64{1} << 16)) return isqrt_shifted(u, 0, limit);
-  const int b = 64 - std::countl_zero(u);  // 17..64
-  const int sh = (b - 7) & ~1;             // even, so that top = u >> sh is in [64, 256)
-  const u64 top = u >> sh;
-  u64 r = (u64{isqrt_seed[static_cast<std::size_t>(top - 64)]} << (sh / 2)) >> 8;
+  int e = 64 - std::countl_zero(u) - 32;  // t = u·2^-e in [2^30, 2^32) for an even e
+  e += e & 1;
+  const u64 t = e >= 0 ? u >> e : u << -e;
+  u64 r = (t * rsqrt_seed(static_cast<std::uint32_t>(t))) >> 31;  // √t = 2^16·T·(1/√T), < 2^17
+  r = e >= 0 ? r << (e / 2) : r >> (-e / 2);
   if (r == 0) r = 1;
   r = (r + u / r) >> 1;
   r = (r + u / r) >> 1;
@@ -94,19 +109,6 @@ constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   return res;
 }
 
-// Seed for 1/sqrt(y), y in [1/4, 1) split into 48 intervals of width 1/64 by y's top bits:
-// 1/sqrt at each interval midpoint (33 + 2i) / 128, in Q2.14, computed at compile time by the
-// exact integer root above: sqrt(2^28 * 128 / (33 + 2i)).
-inline constexpr std::array<std::uint16_t, 48> rsqrt_seed = [] {
-  std::array<std::uint16_t, 48> t{};
-  for (int i = 0; i < 48; ++i) {
-    const u64 radicand = (u64{1} << 35) / static_cast<u64>(33 + 2 * i);
-    const RootResult s = isqrt_shifted(radicand, 0, u64{1} << 20);
-    t[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(s.root + (s.round_up ? 1u : 0u));
-  }
-  return t;
-}();
-
 // 1/sqrt(u * 2^-frac) = mantissa * 2^-(62 + exp2), for u > 0. mantissa is Q2.62 in (1, 2]
 // (up to a few units of 2^-62 below the true value: Newton from below, truncating products).
 struct RsqrtResult {
@@ -120,7 +122,7 @@ constexpr RsqrtResult rsqrt_core(u64 u, int frac) {
   if (((64 - s - frac) & 1) != 0) --s;
   const u64 y = s >= 0 ? u << s : (u >> 1);  // s == -1 only for u >= 2^63: drops one low bit
   const int h = (64 - s - frac) / 2;
-  u64 r = u64{rsqrt_seed[static_cast<std::size_t>((y >> 58) - 16)]} << 48;  // Q2.14 -> Q2.62
+  u64 r = u64{rsqrt_seed(static_cast<std::uint32_t>(y >> 32))} << 47;  // Q.15 -> Q2.62
   bool over = false;
   for (int it = 0; it < 4; ++it) {
     const u64 r2 = round_shr(mul_u64(r, r), 64, over);  // r^2 in Q4.60 (r <= 2: r^2 <= 4)

@@ -330,7 +330,7 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
   for (const auto& row : method_names()) {
     const auto same = std::find_if(columns.begin(), columns.end(), [&](Method m) {
       return tp::fw::Device::method_bytes(m) == row.slot.bytes &&
-             tp::fw::find_method(m)->slot.lights_vertices == row.slot.lights_vertices;
+             tp::fw::find_method(m)->slot.traits.lights_vertices == row.slot.traits.lights_vertices;
     });
     if (same == columns.end())
       columns.push_back(row.id);

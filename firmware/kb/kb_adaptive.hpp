@@ -67,7 +67,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   explicit KbAdaptiveMethod(AdaptiveMode mode = AdaptiveMode::kAdaptive) : mode_(mode) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool skips_hidden_pixels() const override { return true; }
+  static constexpr bool kSkipsHiddenPixels = true;
 
   Path path() const { return path_; }
   int level() const { return level_; }

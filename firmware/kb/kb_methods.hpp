@@ -45,7 +45,7 @@ class KbOneVectorMethod final : public ShadingMethod {
       : skipping_(skipping), coherent_(coherent), o_choice_(o) {}
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool reads_edge_positions() const override { return true; }
+  static constexpr bool kReadsEdgePositions = true;
 
   // The two halves of shade_span, public so that the benchmark can time the span setup alone:
   // prepare_span builds the summed sections of the span, evaluate_span steps them.
@@ -134,7 +134,7 @@ class KbDecompositionMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool reads_edge_positions() const override { return true; }
+  static constexpr bool kReadsEdgePositions = true;
 
  private:
   // The two halves of shade_span (as in KbOneVectorMethod): prepare_span builds each term's
@@ -164,7 +164,7 @@ class KbExactMethod final : public ShadingMethod {
  public:
   bool setup(const Triangle& tri, const ShadeContext& ctx) override;
   void shade_span(const Span& s, Rgb8* out) override;
-  bool reads_edge_positions() const override { return true; }
+  static constexpr bool kReadsEdgePositions = true;
 
  private:
   // The two halves of shade_span (as in KbOneVectorMethod): prepare_span sets up each term's

@@ -186,13 +186,12 @@ Samples6 KbAdaptiveMethod::samples_of(const Cell& cell, int ch) const {
   return Samples6{{at(0, 0), at(4, 0), at(0, 4), at(2, 0), at(2, 2), at(0, 2)}};
 }
 
-// The error estimate: max over channels and the nine check points of |g − q|, Q.15 levels
-// (rounded up). Evaluates the cell's fifteen points where needed.
 // The fifteen points of a cell's quarter lattice (six samples, then the nine checks), evaluated
 // where needed.
 void KbAdaptiveMethod::cell_points(const Cell& cell, const std::int32_t* v[15]) {
-  constexpr int kQuarters[15][2] = {{0, 0}, {4, 0}, {0, 4}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {3, 0},
-                                    {0, 1}, {0, 3}, {3, 1}, {1, 3}, {1, 1}, {2, 1}, {1, 2}};
+  static constexpr std::int8_t kQuarters[15][2] = {{0, 0}, {4, 0}, {0, 4}, {2, 0}, {2, 2},
+                                                   {0, 2}, {1, 0}, {3, 0}, {0, 1}, {0, 3},
+                                                   {3, 1}, {1, 3}, {1, 1}, {2, 1}, {1, 2}};
   for (int k = 0; k < 15; ++k) {
     int a = 0, b = 0;
     cell_point(cell, kQuarters[k][0], kQuarters[k][1], a, b);
@@ -735,7 +734,7 @@ void KbAdaptiveMethod::shade_exact(std::int32_t y, std::int32_t xa, std::int32_t
   count_exact(n);
 }
 
-// Early depth (skips_hidden_pixels): the exact evaluation and the constant are the same at a
+// Early depth (kSkipsHiddenPixels): the exact evaluation and the constant are the same at a
 // pixel wherever a run starts, so they shade [first, last) alone; a quadratic piece's seed
 // depends on where the piece starts and how long it is, so the pieces keep their bounds and
 // only those wholly hidden are left out.

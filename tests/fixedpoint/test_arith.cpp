@@ -2,7 +2,9 @@
 // The accuracy bounds over the full input sets are in test_accuracy.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 #include "fixedpoint/arith.hpp"
 #include "fixedpoint/sqrt.hpp"
@@ -94,4 +96,22 @@ TEST(Rsqrt, PowersOfFourAreExactAndLargeSaturates) {
   // rsqrt(2^-30) = 2^15 is just outside Q15.16; rsqrt(2^-28) = 2^14 is exact.
   EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q1_30::epsilon()), fx::q15_16::max());
   EXPECT_EQ(fx::rsqrt<fx::q15_16>(fx::q1_30::from_raw(4)).raw(), std::int64_t{1} << 30);
+}
+
+// The roots' shared seed (fixedpoint/sqrt.hpp, rsqrt_seed): 1/√T interpolated between 49 knots.
+// Swept over every 2^10-th t of [2^30, 2^32), both ends included: worst relative error
+// 3.585·10^-4 (2^-11.45, near T = 1/4), pinned at the bound the Newton-step counts of
+// rsqrt_core, rsqrt_fast and isqrt_plain rely on, 2^-11.4 = 3.70·10^-4.
+TEST(RsqrtSeed, InterpolationWithinItsBound) {
+  long double worst = 0;
+  for (std::uint64_t t = std::uint64_t{1} << 30; t < (std::uint64_t{1} << 32); t += 1u << 10) {
+    for (const std::uint64_t x : {t, t + (1u << 10) - 1}) {
+      const long double seed = fx::detail::rsqrt_seed(static_cast<std::uint32_t>(x)) / 32768.0L;
+      const long double rel = std::fabs(seed * std::sqrt(x / 4294967296.0L) - 1.0L);
+      worst = rel > worst ? rel : worst;
+    }
+  }
+  std::printf("rsqrt_seed: worst relative error %.4Lg\n", worst);
+  EXPECT_LE(worst, 3.70e-4L);
+  EXPECT_EQ(fx::detail::rsqrt_seed(std::uint32_t{1} << 30), 65536u);  // 1/√(1/4) = 2, exact
 }

@@ -325,9 +325,9 @@ TEST(KbAdaptiveSkipping, RandomTrianglesWithDarkLightsMatchTheNoSkipVariant) {
   EXPECT_EQ(differing, 0u);
 }
 
-// Early depth (ShadingMethod::skips_hidden_pixels): asked for [first, last) of a span, a method
-// gives those pixels exactly the colours it gives them in the whole span. Every span of 2,000
-// random triangles is shaded whole, then narrowed at both ends by random amounts, for each
+// Early depth (kSkipsHiddenPixels, firmware/method.hpp): asked for [first, last) of a span, a
+// method gives those pixels exactly the colours it gives them in the whole span. Every span of
+// 2,000 random triangles is shaded whole, then narrowed at both ends by random amounts, for each
 // kb-adaptive variant and for Phong (the same exact evaluation).
 class NarrowedSpans final : public SpanTarget {
  public:
@@ -359,9 +359,9 @@ TEST(KbAdaptiveEarlyDepth, NarrowedSpansShadeEveryPixelAsTheWholeSpan) {
   auto noskip = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kNoSkip);
   auto exact = std::make_unique<KbAdaptiveMethod>(AdaptiveMode::kExactOnly);
   auto phong = std::make_unique<PhongMethod>();
+  static_assert(KbAdaptiveMethod::kSkipsHiddenPixels && PhongMethod::kSkipsHiddenPixels);
   ShadingMethod* methods[] = {adaptive.get(), noskip.get(), exact.get(), phong.get()};
   for (ShadingMethod* m : methods) {
-    ASSERT_TRUE(m->skips_hidden_pixels());
     Random rnd(31);
     std::mt19937 rng(5);
     Counters counters;
