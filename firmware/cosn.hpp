@@ -19,6 +19,7 @@
 
 #include "firmware/types.hpp"
 #include "fixedpoint/cordic.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 
 namespace tp::fw::cosn {
@@ -41,7 +42,7 @@ constexpr std::int64_t clamp_n(int n) { return fx::clamp(n, kMinN, kMaxN); }
 
 // round(num / den) for num >= 0, den > 0.
 constexpr std::int64_t div_round(std::int64_t num, std::int64_t den) {
-  return (num + den / 2) / den;
+  return fx::idiv(num + den / 2, den);
 }
 
 // floor(sqrt(v)) for v >= 0 (bit-by-bit, no floating point).

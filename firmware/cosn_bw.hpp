@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/wide.hpp"
 
@@ -47,7 +48,7 @@ constexpr void bw_fill(int n, std::uint8_t* table, int size) {
   const u64 last = static_cast<u64>(size - 1);
   for (int i = 0; i < size; ++i) {
     // x = i/(size−1) in Q.48: i·2^48 < 2^61.
-    const u64 x = ((static_cast<u64>(i) << bw_detail::kFrac) + last / 2) / last;
+    const u64 x = fx::udiv((static_cast<u64>(i) << bw_detail::kFrac) + last / 2, last);
     const u64 p = bw_detail::pow_q48(x, n);
     const u64 one = u64{1} << bw_detail::kFrac;
     table[i] = static_cast<std::uint8_t>((255 * p + one / 2) >> bw_detail::kFrac);

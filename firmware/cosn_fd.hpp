@@ -33,6 +33,7 @@
 #include <cstdint>
 
 #include "firmware/cosn.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/wide.hpp"
 
@@ -103,7 +104,7 @@ constexpr int piece_of(i64 theta, i64 a, i64 b) {
 constexpr i64 first_x_past(i64 theta_begin, i64 dtheta, i64 bound, bool strict) {
   const i64 gap = bound - theta_begin;
   if (gap < 0) return 0;
-  return strict ? gap / dtheta + 1 : (gap + dtheta - 1) / dtheta;
+  return strict ? fx::idiv(gap, dtheta) + 1 : fx::idiv(gap + dtheta - 1, dtheta);
 }
 
 // The pixel where the piece next changes, for a span in piece `p` at x (dθ != 0).

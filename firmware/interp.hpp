@@ -9,6 +9,7 @@
 
 #include "firmware/method.hpp"
 #include "fixedpoint/arith.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/wide.hpp"
 
 namespace tp::fw {
@@ -62,7 +63,7 @@ class ScreenPlane {
     const std::int64_t l1 = clamp27(lam.l[1] >> shift_), l2 = clamp27(lam.l[2] >> shift_);
     const std::int64_t num = l1 * d1_ + l2 * d2_;
     // fx::div<int_q> for a positive denominator: round half away from zero, one division.
-    const std::int64_t q = num / area_, r = num % area_;
+    const auto [q, r] = fx::idivmod(num, area_);
     const std::int64_t ar = r < 0 ? -r : r;
     return v0_ + (ar >= area_ - ar ? (num < 0 ? q - 1 : q + 1) : q);
   }
@@ -162,7 +163,7 @@ class SteppedBarycentrics {
       for (int i = 0; i < 3; ++i) b[i] = fx::round_shift_right(m_[i], 10);
     } else {
       const std::int64_t sum = fx::round_shift_right(m_[0] + m_[1] + m_[2], 10);  // Q.30, > 0
-      const std::int64_t inv = ((std::int64_t{1} << 60) + sum / 2) / (sum > 0 ? sum : 1);
+      const std::int64_t inv = fx::idiv((std::int64_t{1} << 60) + sum / 2, sum > 0 ? sum : 1);
       for (int i = 0; i < 3; ++i) b[i] = fx::mul_shift_right(m_[i] >> 10, inv, 30);
     }
     for (int i = 0; i < 3; ++i) {

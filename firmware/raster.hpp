@@ -21,6 +21,7 @@
 
 #include "firmware/method.hpp"
 #include "fixedpoint/arith.hpp"
+#include "fixedpoint/divide.hpp"
 
 namespace tp::fw {
 
@@ -40,10 +41,10 @@ enum class EdgeParameters : std::uint8_t { kWithout, kWith };
 
 // Integer division rounding toward +infinity / -infinity, for d > 0.
 constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? (n + d - 1) / d : -((-n) / d);
+  return n >= 0 ? fx::idiv(n + d - 1, d) : -fx::idiv(-n, d);
 }
 constexpr std::int64_t floor_div(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? n / d : -((-n + d - 1) / d);
+  return n >= 0 ? fx::idiv(n, d) : -fx::idiv(-n + d - 1, d);
 }
 
 // First pixel row (or column) whose centre 16 k + 8 is >= the subpixel coordinate v.

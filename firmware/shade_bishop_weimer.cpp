@@ -5,6 +5,7 @@
 
 #include "firmware/cosn_bw.hpp"
 #include "firmware/methods.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/sqrt.hpp"
 
 namespace tp::fw {
@@ -246,8 +247,8 @@ void BishopWeimerMethod::begin(const Triangle& tri, const ShadeContext& ctx, Vec
   // The expansion pixel: the pixel whose centre is nearest the screen centroid.
   const std::int64_t sx = std::int64_t{tri.v[0].sx} + tri.v[1].sx + tri.v[2].sx;  // 48 × x
   const std::int64_t sy = std::int64_t{tri.v[0].sy} + tri.v[1].sy + tri.v[2].sy;
-  xr_ = (sx < 0 ? sx - 47 : sx) / 48;  // floor(centroid / 16 px)
-  yr_ = (sy < 0 ? sy - 47 : sy) / 48;
+  xr_ = fx::idiv(sx < 0 ? sx - 47 : sx, 48);  // floor(centroid / 16 px)
+  yr_ = fx::idiv(sy < 0 ? sy - 47 : sy, 48);
   // The screen-linear normal there, and its steps per pixel (Q.kF).
   lam = lambdas_at(tri, 16 * xr_ + 8, 16 * yr_ + 8);
   std::int64_t n[3][3];
@@ -300,7 +301,7 @@ void BishopWeimerMethod::add_specular(const Taylor& t, const LightState& l, cons
     // ks Il_c per unit of what the pixel loop multiplies it by: a table entry (255 for 1.0) in
     // Q.36, or a power in Q.24 with the weight in Q.30.
     const std::int64_t k36 = fx::mul_shift_right(m.ks.raw(), l.color[c].raw(), 10);
-    spec_weight_[lights_][c] = table_size_ != 0 ? (k36 + 127) / 255 : k36 >> 6;
+    spec_weight_[lights_][c] = table_size_ != 0 ? fx::idiv(k36 + 127, 255) : k36 >> 6;
   }
   ++lights_;
 }

@@ -1,6 +1,7 @@
 // Duff's shading (methods.hpp, 4): Phong's screen-linear normal, the lighting forward-differenced
 // as numerators over the root of a quadratic radicand (Bishop & Weimer's statement of Duff 1979).
 #include "firmware/methods.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/sqrt.hpp"
 
 namespace tp::fw {
@@ -105,7 +106,7 @@ void DuffMethod::shade_span(const Span& s, Rgb8* out) {
     // numerator is 0 too).
     const std::uint64_t root = fx::isqrt_floor(static_cast<std::uint64_t>(m_));  // |N|, Q.kF
     const std::int64_t inverse =
-        root == 0 ? 0 : static_cast<std::int64_t>((std::uint64_t{1} << (kF + 30)) / root);
+        root == 0 ? 0 : static_cast<std::int64_t>(fx::udiv(std::uint64_t{1} << (kF + 30), root));
     std::int64_t acc[3] = {ambient_[0], ambient_[1], ambient_[2]};
     for (int j = 0; j < lights_; ++j) {
       const Numerators& u = num_[j];

@@ -3,6 +3,7 @@
 // sub-triangle by the inner edges and steps its colour as Gouraud does.
 #include "firmware/methods.hpp"
 #include "firmware/six_points.hpp"
+#include "fixedpoint/divide.hpp"
 
 namespace tp::fw {
 namespace {
@@ -44,7 +45,7 @@ bool GouraudSubdividedMethod::setup(const Triangle& tri, const ShadeContext& ctx
       const std::int64_t c0 = lit[corner[0]].c[ch], c1 = lit[corner[1]].c[ch],
                          c2 = lit[corner[2]].c[ch];
       if (p.degenerate) {
-        p.constant[ch] = (c0 + c1 + c2) / 3;
+        p.constant[ch] = fx::idiv(c0 + c1 + c2, 3);
         continue;
       }
       p.plane[ch].setup(p.tri, c0, c1, c2);

@@ -10,6 +10,7 @@
 
 #include <bit>
 
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/wide.hpp"
 
@@ -25,20 +26,21 @@ constexpr u64 div_round_shifted(u64 n, u64 d, int s, u64 limit) {
     // d * 2^t >= 2^64 > 2n: the ratio is below one half and rounds to zero.
     if (t >= 64 || d > (~u64{0} >> t)) return 0;
     const u64 dd = d << t;
-    const u64 q = n / dd, r = n % dd;
-    return r >= dd - r ? q + 1 : q;  // 2r >= dd without forming 2r
+    const UDivMod m = udivmod(n, dd);
+    return m.rem >= dd - m.rem ? m.quot + 1 : m.quot;  // 2r >= dd without forming 2r
   }
   // n * 2^s fits in 64 bits: one division gives the same floor and remainder as the long
   // division below, hence the same rounding and saturation.
   if (s < 64 && n <= (~u64{0} >> s)) {
     const u64 ns = n << s;
-    const u64 q0 = ns / d, r0 = ns % d;
-    const u64 q1 = r0 >= d - r0 ? q0 + 1 : q0;
+    const UDivMod m = udivmod(ns, d);
+    const u64 q1 = m.rem >= d - m.rem ? m.quot + 1 : m.quot;
     return q1 > limit ? limit + 1 : q1;
   }
   // limit >> k for any k >= 0 (a shift by 64+ is undefined).
   const auto lim_shr = [limit](int k) { return k >= 63 ? u64{0} : limit >> k; };
-  u64 q = n / d, r = n % d;
+  const UDivMod first = udivmod(n, d);
+  u64 q = first.quot, r = first.rem;
   int remaining = s;
   if (q > lim_shr(remaining)) return limit + 1;
   // Bring down as many zero bits at once as the remainder has headroom for (r < d < 2^63, so
@@ -51,8 +53,9 @@ constexpr u64 div_round_shifted(u64 n, u64 d, int s, u64 limit) {
     int k = std::countl_zero(r);
     if (k > remaining) k = remaining;
     const u64 rk = r << k;
-    q = (q << k) + rk / d;
-    r = rk % d;
+    const UDivMod m = udivmod(rk, d);
+    q = (q << k) + m.quot;
+    r = m.rem;
     remaining -= k;
     if (q > lim_shr(remaining)) return limit + 1;
   }

@@ -23,6 +23,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/sqrt.hpp"
 #include "fixedpoint/wide.hpp"
@@ -196,15 +197,15 @@ constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
   // Now x in [2^58, 2^61) and the residual angle r = atan(t), t = |y|/x < tan(atan 2^-7)
   // (so |y| < 2^54). t in Q54 by two 64-bit divisions (x truncated to 2^-34 relative).
   const u64 ym = magnitude(y);
-  const u64 xd = static_cast<u64>(x) >> 24;      // [2^34, 2^37)
-  const u64 yn = ym << 6;                        // < 2^60
-  const u64 q = yn / xd, r = yn % xd;            // t in Q30, < 2^24
-  const u64 t54 = (q << 24) + ((r << 24) / xd);  // r < 2^37: r << 24 < 2^61
+  const u64 xd = static_cast<u64>(x) >> 24;                    // [2^34, 2^37)
+  const u64 yn = ym << 6;                                      // < 2^60
+  const UDivMod t30 = udivmod(yn, xd);                         // t in Q30, < 2^24
+  const u64 t54 = (t30.quot << 24) + udiv(t30.rem << 24, xd);  // rem < 2^37: << 24 < 2^61
   // atan t = t − t³/3 + t⁵/5 − …: t⁵/5 < 2^-37.
   const u64 t36 = t54 >> 18;               // < 2^29
   const u64 t2_36 = (t36 * t36) >> 36;     // < 2^22
   const u64 cube54 = (t2_36 * t36) >> 18;  // t³ in Q54
-  const wide_t atan54 = static_cast<wide_t>(t54) - static_cast<wide_t>(cube54 / 3);
+  const wide_t atan54 = static_cast<wide_t>(t54) - static_cast<wide_t>(udiv(cube54, 3));
   return z + (y >= 0 ? atan54 : -atan54) * 64;  // Q54 -> Q60
 }
 
@@ -219,11 +220,12 @@ constexpr SinCos sin_cos_fast(angle_t theta) {
   wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
   detail::rotation_steps<false>(x, y, z, detail::kFastIterations);
   // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
-  const wide_t z30 = round_shift_right(z, 30);          // |.| < 2^23
-  const wide_t z2_60 = z30 * z30;                       // < 2^46
-  const wide_t z2_30 = z2_60 >> 30;                     // < 2^16
-  const wide_t e60 = z2_60 / 2 - (z2_30 * z2_30) / 24;  // 1 − cos z, < 2^45
-  const wide_t s60 = z - (z2_30 * z30) / 6;             // sin z, |.| < 2^53
+  const wide_t z30 = round_shift_right(z, 30);  // |.| < 2^23
+  const wide_t z2_60 = z30 * z30;               // < 2^46
+  const wide_t z2_30 = z2_60 >> 30;             // < 2^16
+  // e = 1 − cos z, < 2^45; z2_30² < 2^32 takes a 32-bit division (one Cortex-M3 instruction).
+  const wide_t e60 = z2_60 / 2 - static_cast<std::uint32_t>(z2_30 * z2_30) / 24u;
+  const wide_t s60 = z - idiv(z2_30 * z30, 6);  // sin z, |.| < 2^53
   // x·e: Q32 × Q45 -> Q77 (< 2^62); y·s: Q31 × Q38 -> Q69 (< 2^62).
   const wide_t e45 = e60 >> 15, s38 = round_shift_right(s60, 22);
   const wide_t x32 = round_shift_right(x, 28), y32 = round_shift_right(y, 28);

@@ -16,6 +16,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/wide.hpp"
 
@@ -96,8 +97,8 @@ constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   u64 r = (t * rsqrt_seed(static_cast<std::uint32_t>(t))) >> 31;  // √t = 2^16·T·(1/√T), < 2^17
   r = e >= 0 ? r << (e / 2) : r >> (-e / 2);
   if (r == 0) r = 1;
-  r = (r + u / r) >> 1;
-  r = (r + u / r) >> 1;
+  r = (r + udiv(u, r)) >> 1;
+  r = (r + udiv(u, r)) >> 1;
   if (r > 0xffffffffu) r = 0xffffffffu;  // the root of any u64 is below 2^32
   while (r * r > u) --r;
   while (r < 0xffffffffu && (r + 1) * (r + 1) <= u) ++r;

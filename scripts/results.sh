@@ -261,8 +261,9 @@ EOF
 The device's firmware cross-compiled for the Cortex-M3 (-O2) and run under
 \`qemu-system-arm -M mps2-an385 -icount shift=0\`, which counts guest instructions: every method
 on every scene at the scenes' own resolutions, with the ratio to Gouraud, and the calls of the
-64-bit division helpers per pixel written. \`bash scripts/target-cost.sh --full\`, $(date +%Y-%m-%d);
-docs/TARGET.md explains the measurement and gives the same at 160x120.
+64-bit division helpers (counted; none since the firmware divides with fixedpoint/divide.hpp).
+\`bash scripts/target-cost.sh --full\`, $(date +%Y-%m-%d); docs/TARGET.md explains the
+measurement and gives the same at 160x120.
 
 EOF
     bash scripts/target-cost.sh --full

@@ -7,9 +7,10 @@
 # (draws, model-views, end_frame) and calibrates ticks against a loop of 2,000,000 known
 # instructions (40 instructions per tick; so the figures have a resolution of 40 instructions
 # per frame). Prints two markdown tables: instructions per pixel written, and the ratio to
-# Gouraud; and the calls of the 64-bit division helpers (__aeabi_ldivmod, __aeabi_uldivmod) per
-# pixel written, counted by wrappers linked into the cost images (target/divcount.S), whose own
-# instructions (7 per call) are taken out of the first table.
+# Gouraud; and the calls of the 64-bit division helpers (__aeabi_ldivmod, __aeabi_uldivmod),
+# counted by wrappers linked into the cost images (target/divcount.S), whose own instructions (7
+# per call) are taken out of the first table: one line when there are none (the firmware divides
+# with fixedpoint/divide.hpp), else a table of the calls per pixel written.
 #
 # Usage: bash scripts/target-cost.sh [--build DIR] [--methods m1,m2,...] [--full]
 #   DIR: a configured and built tree with the target images (default build/release).
@@ -46,6 +47,7 @@ import os, sys
 tmp, methods, size = sys.argv[1], sys.argv[2].split(","), sys.argv[3]
 cost = {}  # (scene, method) -> instructions per pixel written
 divs = {}  # (scene, method) -> 64-bit division helper calls per pixel written
+calls_of = {}  # (scene, method) -> 64-bit division helper calls in the draws
 scenes = []
 for m in methods:
     per_tick = None
@@ -61,6 +63,7 @@ for m in methods:
             instructions = ticks * per_tick - calls * wrapper
             cost[scene, m] = instructions / written if written else float("nan")
             divs[scene, m] = calls / written if written else float("nan")
+            calls_of[scene, m] = calls
 base = "gouraud" if "gouraud" in methods else None
 print("Guest instructions per pixel written, Cortex-M3 (-O2), " + size +
       (" (in brackets: ratio to gouraud)" if base else ""))
@@ -74,10 +77,16 @@ for s in scenes:
         cells.append("%.0f" % c + (" (%.2f)" % (c / cost[s, base]) if base and m != base else ""))
     print("| %s | %s |" % (s, " | ".join(cells)))
 print()
-print("64-bit division helper calls (__aeabi_ldivmod + __aeabi_uldivmod) per pixel written, same run")
-print()
-print("| scene | " + " | ".join(methods) + " |")
-print("|---|" + "---:|" * len(methods))
-for s in scenes:
-    print("| %s | %s |" % (s, " | ".join("%.2f" % divs[s, m] for m in methods)))
+calls_total = sum(calls_of[s, m] for s in scenes for m in methods)
+if calls_total == 0:
+    print("64-bit division helper calls (__aeabi_ldivmod + __aeabi_uldivmod), same run: none, for "
+          "every method and scene (the firmware divides with fixedpoint/divide.hpp)")
+else:
+    print("64-bit division helper calls (__aeabi_ldivmod + __aeabi_uldivmod) per pixel written, "
+          "same run")
+    print()
+    print("| scene | " + " | ".join(methods) + " |")
+    print("|---|" + "---:|" * len(methods))
+    for s in scenes:
+        print("| %s | %s |" % (s, " | ".join("%.2f" % divs[s, m] for m in methods)))
 PY

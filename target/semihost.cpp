@@ -1,5 +1,7 @@
 #include "target/semihost.hpp"
 
+#include "fixedpoint/divide.hpp"
+
 namespace tp::target {
 namespace {
 
@@ -25,9 +27,10 @@ void write_dec(std::uint64_t value) {
   char buf[24];
   char* p = buf + sizeof buf - 1;
   *p = '\0';
-  do {
-    *--p = static_cast<char>('0' + value % 10u);
-    value /= 10u;
+  do {  // fx::udivmod: the images link no 64-bit division helper (target.*.no_division_helper)
+    const tp::fx::UDivMod digit = tp::fx::udivmod(value, 10u);
+    *--p = static_cast<char>('0' + digit.rem);
+    value = digit.quot;
   } while (value != 0);
   write(p);
 }

@@ -2,6 +2,7 @@
 // highlight guard (peak_level) and the terminators (find_terminators). Both bound the normal
 // and the light or halfway direction over a cell by the caps of their values at its vertices.
 #include "firmware/kb/kb_adaptive.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/sqrt.hpp"
 
 #include <algorithm>
@@ -54,7 +55,7 @@ std::int64_t angle_of(std::int64_t c) {
   using Q60 = fx::Q<2, 60, std::int64_t>;
   const std::int64_t two_t = 2 * t < 4 * one ? 2 * t : 4 * one - 1;
   const std::int64_t root = fx::sqrt<q1_30>(Q60::from_raw(two_t << 30)).raw();  // √(2t), Q.30
-  const std::int64_t series = one + t / 12 + ((3 * ((t * t) >> 30)) / 160);
+  const std::int64_t series = one + fx::idiv(t, 12) + fx::idiv(3 * ((t * t) >> 30), 160);
   return (root * series) >> 30;
 }
 
@@ -173,7 +174,7 @@ int KbAdaptiveMethod::peak_level(const Cell& c, std::uint32_t& peaks) {
     // ω = 0.6 / √n in Q.30: 0.6·2^45 / (√n·2^15).
     omega_n_ = m.n;
     const std::uint64_t root = fx::isqrt_floor(std::uint64_t{m.n} << 30);
-    omega_ = static_cast<std::int64_t>(21110623253299ULL / (root == 0 ? 1 : root));
+    omega_ = static_cast<std::int64_t>(fx::udiv(21110623253299ULL, root == 0 ? 1 : root));
   }
   PointShader::Point pt[3];
   Vec3u normals[3];
@@ -193,7 +194,7 @@ int KbAdaptiveMethod::peak_level(const Cell& c, std::uint32_t& peaks) {
   std::int64_t size_inf = 0;
   if (near_lights) {
     for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < 3; ++k) at[v][k] = pt[v].s > 0 ? pt[v].p[k] / pt[v].s : 0;
+      for (int k = 0; k < 3; ++k) at[v][k] = pt[v].s > 0 ? fx::idiv(pt[v].p[k], pt[v].s) : 0;
     for (int v = 0; v < 3; ++v)
       for (int k = 0; k < 3; ++k)
         size_inf = std::max(size_inf, abs64(at[(v + 1) % 3][k] - at[v][k]));

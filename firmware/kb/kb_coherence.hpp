@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "firmware/kb/kb_common.hpp"
+#include "fixedpoint/divide.hpp"
 
 namespace tp::fw::kb {
 
@@ -62,7 +63,7 @@ struct QuadY {
   std::int64_t value() const { return fx::round_shift_right(v, kExtra); }
 
   static std::int64_t div_round(std::int64_t n, std::int64_t d) {
-    return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+    return n >= 0 ? fx::idiv(n + d / 2, d) : -fx::idiv(-n + d / 2, d);
   }
 };
 

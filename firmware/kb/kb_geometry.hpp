@@ -30,6 +30,7 @@
 
 #include "fixedpoint/arith.hpp"
 #include "fixedpoint/cordic.hpp"
+#include "fixedpoint/divide.hpp"
 #include "fixedpoint/q.hpp"
 #include "fixedpoint/sqrt.hpp"
 #include "fixedpoint/vec3.hpp"
@@ -158,7 +159,7 @@ constexpr Arc make_arc(const Unit& from, const Unit& to) {
     const Unit pn = scaled_pole(pole);
     const q1_30 pn_len = length(pn);  // [2^29, √3·2^30) raw
     const Unit tu = fx::cross<q1_30>(pn, from);
-    const std::int64_t inv = (std::int64_t{1} << 61) / pn_len.raw();  // 1/|Pn| in Q.31, < 2^32
+    const std::int64_t inv = fx::idiv(std::int64_t{1} << 61, pn_len.raw());  // 1/|Pn|, Q.31, < 2^32
     const auto one = [inv](q1_30 v) {
       return q1_30::from_raw_sat(fx::round_shift_right(std::int64_t{v.raw()} * inv, 31));
     };

@@ -28,6 +28,7 @@
 #include "firmware/cosn_fd.hpp"
 #include "firmware/types.hpp"
 #include "fixedpoint/cordic.hpp"
+#include "fixedpoint/divide.hpp"
 
 namespace tp::fw::kb {
 
@@ -73,7 +74,7 @@ constexpr int make_one_channel(const cosn::CosnCoeffs& coeffs, fx::angle_t theta
   if (end <= kPiRaw && end >= -kPiRaw)
     return cosn::make_segments(coeffs, theta0, dtheta, scale, length, out);
   // First pixel past ±π.
-  const std::int64_t k = dt > 0 ? (kPiRaw - t0) / dt + 1 : (t0 + kPiRaw) / (-dt) + 1;
+  const std::int64_t k = dt > 0 ? fx::idiv(kPiRaw - t0, dt) + 1 : fx::idiv(t0 + kPiRaw, -dt) + 1;
   const int first = cosn::make_segments(coeffs, theta0, dtheta, scale, static_cast<int>(k), out);
   const std::int64_t t1 = t0 + dt * k + (dt > 0 ? -kTwoPiRawS : kTwoPiRawS);
   cosn::CosnSegment* rest = out + first;

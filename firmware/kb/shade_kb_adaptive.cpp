@@ -23,6 +23,7 @@
 #include "firmware/lighting.hpp"
 #include "firmware/raster.hpp"
 #include "firmware/vecmath.hpp"
+#include "fixedpoint/divide.hpp"
 
 namespace tp::fw::kb {
 namespace {
@@ -500,7 +501,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
   // Per-pixel steps of λ1, λ2 (Q.30); a cell of level L steps by 2^L times these.
   du_ = fx::div<local_t>(fx::int_q::from_raw(de1_), fx::int_q::from_raw(tri.area2)).raw();
   dv_ = fx::div<local_t>(fx::int_q::from_raw(de2_), fx::int_q::from_raw(tri.area2)).raw();
-  area_recip_ = (std::int64_t{1} << 60) / tri.area2;
+  area_recip_ = fx::idiv(std::int64_t{1} << 60, tri.area2);
   find_terminators(tri);
   smooth_ = every_terminator_ && (ctx.material.ks.raw() == 0 || ctx.material.n >= 2);
   const std::int64_t budget = ctx.budget_levels >= 1 ? ctx.budget_levels : 1;
