@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "firmware/build.hpp"
 #include "firmware/raster.hpp"
 #include "firmware/registry.hpp"
 #include "fixedpoint/cordic.hpp"
@@ -130,10 +131,11 @@ constexpr std::int32_t kNormalPending = std::numeric_limits<std::int32_t>::min()
 //
 // Everything that is fixed for the draw — the regions' addresses, the pixel format, the depth
 // test, the write counts — is resolved once per draw, in the constructor, into base pointers
-// and the two pixel loops (with and without depth saturation) for this state; begin() takes
-// each triangle's depth plane, and the counters are summed in members and added to the
-// device's once, by flush_counters(). Per span there is then the method's call, the depth at
-// the span's start, and one call of the chosen loop.
+// and the two pixel loops (with and without depth saturation) for this state (a size build has
+// one loop per colour source for every state, firmware/build.hpp); begin() takes each triangle's
+// depth plane, and the counters are summed in members and added to the device's once, by
+// flush_counters(). Per span there is then the method's call, the depth at the span's start, and
+// one call of the chosen loop.
 class PixelWriter final {
  public:
   explicit PixelWriter(Device& d) : dev_(d) {
@@ -148,10 +150,7 @@ class PixelWriter final {
     // row kept for them (Device::layout), the same row for every span.
     const bool depth_test = st.depth_test && st.viewport.depth_buffer;
     depth_row_stride_ = st.viewport.depth_buffer ? width_ : 0;
-    const int variant = (st.viewport.format == PixelFormat::kRgb565 ? 4 : 0) |
-                        (depth_test ? 2 : 0) | (counts_ != nullptr ? 1 : 0);
-    write_exact_ = kLoops[1][variant];
-    write_saturating_ = kLoops[0][variant];
+    state_ = DrawState{st.viewport.format == PixelFormat::kRgb565, depth_test, counts_ != nullptr};
     // The method is the draw's: whether it takes early depth, and whether its colours are computed
     // in the pixel loop (not with the write counts: the linear loops leave them out), is decided
     // once.
@@ -159,11 +158,7 @@ class PixelWriter final {
     edges_ = traits.reads_edge_positions ? EdgeParameters::kWith : EdgeParameters::kWithout;
     early_depth_ = depth_test && traits.skips_hidden_pixels;
     linear_ = traits.colours_linear && counts_ == nullptr && !early_depth_;
-    if (linear_) {
-      write_linear_exact_ = kLinearLoops[1][variant >> 1];
-      write_linear_saturating_ = kLinearLoops[0][variant >> 1];
-      write_constant_ = kConstantLoops[variant >> 1];
-    }
+    if constexpr (!kSizeBuild) choose_loops();
   }
   // Whether rasterize() steps the edges' parameters for the method's spans.
   EdgeParameters edge_parameters() const { return edges_; }
@@ -210,6 +205,18 @@ class PixelWriter final {
   }
 
  private:
+  // Speed builds: the loop instances for the draw's state.
+  void choose_loops() {
+    const int variant =
+        (state_.rgb565 ? 4 : 0) | (state_.depth_test ? 2 : 0) | (state_.counts ? 1 : 0);
+    write_exact_ = kLoops[1][variant];
+    write_saturating_ = kLoops[0][variant];
+    if (linear_) {
+      write_linear_exact_ = kLinearLoops[1][variant >> 1];
+      write_linear_saturating_ = kLinearLoops[0][variant >> 1];
+      write_constant_ = kConstantLoops[variant >> 1];
+    }
+  }
   // Early depth: narrows s to [first, last), its first and last pixel that pass the depth test
   // (the same test as the pixel loop's: the span's pixels are distinct, so none of its writes
   // changes another's outcome); false if none does. Only the hidden ends are scanned, so a
@@ -240,6 +247,10 @@ class PixelWriter final {
                   dz_,
                   first,
                   last};
+    if constexpr (kSizeBuild) {
+      pixels_written_ += pixels(run, state_, BufferColours{colours});
+      return;
+    }
     // The depth is linear along the span: when both ends' depth words need no saturation, none
     // does.
     const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
@@ -254,6 +265,13 @@ class PixelWriter final {
     const LinearRun run{
         {nullptr, depth_row, colour_ + row * bytes_per_pixel_, nullptr, z, dz_, s.x0, s.x1},
         colours};
+    if constexpr (kSizeBuild) {
+      // One loop: a span of one colour steps by zero.
+      pixels_written_ += pixels(run.run, state_,
+                                LinearSteps{{colours.c[0], colours.c[1], colours.c[2]},
+                                            {colours.dc[0], colours.dc[1], colours.dc[2]}});
+      return;
+    }
     const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
                              depth_in_range((z + dz_ * (n - 1)) >> ScreenPlane::kStepFrac);
     // Flat's spans, and Gouraud's where the colour does not change along x: the colour is
@@ -299,30 +317,43 @@ class PixelWriter final {
       return px;
     }
   };
+  // The draw's pixel format, depth test and write counts, and whether the span's depth words need
+  // saturation: constants of each loop instance in speed builds, read per pixel by the loops of
+  // size builds (firmware/build.hpp), which always saturate: the same words.
+  template <bool kRgb565, bool kDepthTest, bool kCounts, bool kExactDepth>
+  struct FixedState {
+    static constexpr bool rgb565 = kRgb565, depth_test = kDepthTest, counts = kCounts,
+                          exact_depth = kExactDepth;
+  };
+  struct DrawState {
+    bool rgb565 = false, depth_test = false, counts = false;
+    static constexpr bool exact_depth = false;
+  };
   using Loop = std::uint64_t (*)(const Run&);
   // Depth-tests and writes the span; returns the pixels written. kExactDepth: every pixel's depth
   // word is inside (0, kDepthFar), so depth_word's saturation is left out.
   template <bool kRgb565, bool kDepthTest, bool kCounts, bool kExactDepth>
   static std::uint64_t write(const Run& r) {
-    return pixels<kRgb565, kDepthTest, kCounts, kExactDepth>(r, BufferColours{r.colours});
+    return pixels(r, FixedState<kRgb565, kDepthTest, kCounts, kExactDepth>{},
+                  BufferColours{r.colours});
   }
   template <bool kRgb565, bool kDepthTest, bool kExactDepth>
   static std::uint64_t write_linear(const LinearRun& r) {
     const LinearColours& c = r.colours;
-    return pixels<kRgb565, kDepthTest, false, kExactDepth>(
-        r.run, LinearSteps{{c.c[0], c.c[1], c.c[2]}, {c.dc[0], c.dc[1], c.dc[2]}});
+    return pixels(r.run, FixedState<kRgb565, kDepthTest, false, kExactDepth>{},
+                  LinearSteps{{c.c[0], c.c[1], c.c[2]}, {c.dc[0], c.dc[1], c.dc[2]}});
   }
   template <bool kRgb565, bool kDepthTest>
   static std::uint64_t write_constant(const LinearRun& r) {
     constexpr int s = LinearColours::kShift;
     const LinearColours& c = r.colours;
-    return pixels<kRgb565, kDepthTest, false, true>(
-        r.run, ConstantColour{Rgb8{static_cast<std::uint8_t>(c.c[0] >> s),
-                                   static_cast<std::uint8_t>(c.c[1] >> s),
-                                   static_cast<std::uint8_t>(c.c[2] >> s)}});
+    return pixels(r.run, FixedState<kRgb565, kDepthTest, false, true>{},
+                  ConstantColour{Rgb8{static_cast<std::uint8_t>(c.c[0] >> s),
+                                      static_cast<std::uint8_t>(c.c[1] >> s),
+                                      static_cast<std::uint8_t>(c.c[2] >> s)}});
   }
-  template <bool kRgb565, bool kDepthTest, bool kCounts, bool kExactDepth, class Colours>
-  static std::uint64_t pixels(const Run& r, Colours colours) {
+  template <class State, class Colours>
+  static std::uint64_t pixels(const Run& r, State state, Colours colours) {
     constexpr int f = ScreenPlane::kStepFrac;
     // Locals, not r's fields: the byte stores below may alias anything, and would make the
     // compiler reload every field at every pixel.
@@ -336,13 +367,14 @@ class PixelWriter final {
     for (std::int32_t x = r.x0; x < x1; ++x, z += dz) {
       const auto i = static_cast<std::size_t>(x);
       const Rgb8 px = colours.next();
-      const std::uint32_t d = kExactDepth ? depth_word_unsaturated(z >> f) : depth_word(z >> f);
-      if (kDepthTest && !(d < depth[i])) {
+      const std::uint32_t d =
+          state.exact_depth ? depth_word_unsaturated(z >> f) : depth_word(z >> f);
+      if (state.depth_test && !(d < depth[i])) {
         ++rejected;
         continue;
       }
       depth[i] = d;
-      if constexpr (kRgb565) {
+      if (state.rgb565) {
         // RGB565 keeps the top bits of the rounded 8-bit levels (docs/CONVENTIONS.md).
         const auto v =
             static_cast<std::uint16_t>(((px.r >> 3) << 11) | ((px.g >> 2) << 5) | (px.b >> 3));
@@ -353,7 +385,7 @@ class PixelWriter final {
         colour_row[3 * i + 1] = px.g;
         colour_row[3 * i + 2] = px.b;
       }
-      if constexpr (kCounts) {
+      if (state.counts) {
         if (counts[i] != 0xff) ++counts[i];
       }
     }
@@ -395,6 +427,7 @@ class PixelWriter final {
   std::size_t depth_row_stride_ = 0;  // the width, or 0 without a depth buffer (one row)
   std::uint8_t* colour_ = nullptr;
   std::uint8_t* counts_ = nullptr;  // null unless the write counts are on
+  DrawState state_;                 // size builds' loops read it
   Loop write_exact_ = nullptr, write_saturating_ = nullptr;
   bool linear_ = false;  // the method's kColoursLinear, and no write counts
   LinearLoop write_linear_exact_ = nullptr, write_linear_saturating_ = nullptr;

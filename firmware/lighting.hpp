@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "firmware/build.hpp"
 #include "firmware/method.hpp"
 #include "firmware/vecmath.hpp"
 #include "fixedpoint/arith.hpp"
@@ -111,13 +112,9 @@ std::int64_t power_unrolled(std::int64_t x) {
 }  // namespace detail
 
 // The unrolled power for exponents 1..kUnrolledPowers (nullptr above: power() takes them),
-// for a caller that takes many powers of one exponent (firmware/point_shader.hpp). Builds for
-// size (-Os) have none: the table's code is their loop's many times over.
-#if defined(__OPTIMIZE_SIZE__)
-inline constexpr std::uint32_t kUnrolledPowers = 0;
-#else
-inline constexpr std::uint32_t kUnrolledPowers = 32;
-#endif
+// for a caller that takes many powers of one exponent (firmware/point_shader.hpp). Size builds
+// have none (firmware/build.hpp): the table's code is their loop's many times over.
+inline constexpr std::uint32_t kUnrolledPowers = kSizeBuild ? 0 : 32;
 using PowerFn = std::int64_t (*)(std::int64_t);
 namespace detail {
 template <std::size_t... N>

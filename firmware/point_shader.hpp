@@ -11,6 +11,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "firmware/build.hpp"
 #include "firmware/interp.hpp"
 #include "firmware/lighting.hpp"
 #include "firmware/method.hpp"
@@ -307,7 +308,7 @@ class PointShader {
   }
   // The output colour at the stepper's pixel (output_level of each channel's sum).
   template <bool kPoint>
-  [[gnu::always_inline]] Rgb8 shade_stepped(const SpanStepper& st, const LightStepper* ls) const {
+  TP_PIXEL_INLINE Rgb8 shade_stepped(const SpanStepper& st, const LightStepper* ls) const {
     Sums acc;
     const bool finite = ctx_->eye == EyeMode::kFinite;
     const CutVector n = cut_vector(st.n, normal_cut_, normal_bias_);
@@ -330,9 +331,8 @@ class PointShader {
   }
   // shade_stepped's lights in general: point lights (kPoint), or the eye at infinity.
   template <bool kPoint>
-  [[gnu::always_inline]] void shade_lights(const CutVector& n, const CutVector& e,
-                                           std::int64_t normal_eye, const LightStepper* ls,
-                                           Sums& acc) const {
+  TP_PIXEL_INLINE void shade_lights(const CutVector& n, const CutVector& e, std::int64_t normal_eye,
+                                    const LightStepper* ls, Sums& acc) const {
     const bool finite = ctx_->eye == EyeMode::kFinite;
     for (int li = 0; li < lights_; ++li) {
       const LightState& l = *light_[li];
@@ -529,7 +529,7 @@ class PointShader {
   // lights rounded once. Where their intensities add up to at most 2 each product is at most about
   // 2^61 and the plain sum fits; above, the sums' whole and fractional parts are multiplied apart
   // (the same value).
-  [[gnu::always_inline]] void totals(const Sums& s, std::int64_t out[3]) const {
+  TP_PIXEL_INLINE void totals(const Sums& s, std::int64_t out[3]) const {
     const std::int64_t ks = ctx_->material.ks.raw();
     constexpr std::int64_t half = std::int64_t{1} << 29;
     if (few_grey_) {
@@ -549,8 +549,7 @@ class PointShader {
   // One light's Blinn-Phong term, from max(0, N·L) (or the unclamped N·L of a terminator) and
   // max(0, N·H). Below spec_zero_below_ the power is exactly 0, so it is not taken: the same
   // bits (kNoSkip takes it, and its images are tested to be identical).
-  [[gnu::always_inline]] void add_light(int li, std::int64_t ndl, std::int64_t ndh,
-                                        Sums& sums) const {
+  TP_PIXEL_INLINE void add_light(int li, std::int64_t ndl, std::int64_t ndh, Sums& sums) const {
     const bool no_spec = skipping_ && ndh < spec_zero_below_;
     if (no_spec && ndl == 0) return;  // adds exactly 0
     const MaterialCmd& m = ctx_->material;

@@ -19,6 +19,7 @@
 #include <bit>
 #include <utility>
 
+#include "firmware/build.hpp"
 #include "firmware/interp.hpp"
 #include "firmware/lighting.hpp"
 #include "firmware/raster.hpp"
@@ -658,12 +659,15 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
     for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n);
     for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n);
   }
-  // The common cases with their loops unrolled (the states in registers).
-  switch (leaf.crossing) {
-    case 1: shade_crossings<1>(st, crossing, n, out); return;
-    case 2: shade_crossings<2>(st, crossing, n, out); return;
-    case 3: shade_crossings<3>(st, crossing, n, out); return;
-    default: break;
+  // The common cases with their loops unrolled (the states in registers), in speed builds
+  // (firmware/build.hpp).
+  if constexpr (!kSizeBuild) {
+    switch (leaf.crossing) {
+      case 1: shade_crossings<1>(st, crossing, n, out); return;
+      case 2: shade_crossings<2>(st, crossing, n, out); return;
+      case 3: shade_crossings<3>(st, crossing, n, out); return;
+      default: break;
+    }
   }
   const int count = 3 + leaf.crossing;
   for (std::int32_t x = 0; x < n; ++x) {

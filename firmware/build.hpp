@@ -1,0 +1,22 @@
+// What the build's optimisation goal changes in the firmware: code copied for speed. A speed build
+// (-O2) forces the per-pixel helpers inline (TP_PIXEL_INLINE), unrolls the small loops it is
+// given unrolled forms of, and has a pixel loop instance for every combination of pixel format,
+// depth test, write counts and depth saturation, so that no pixel branches on them. A size build
+// (-Os, which defines __OPTIMIZE_SIZE__) leaves the inlining to the compiler, takes the general
+// loops, and has one pixel loop per colour source that reads the draw's state per pixel
+// (firmware/device.cpp, PixelWriter; docs/TARGET.md, "Footprint"). The arithmetic is the same in
+// both, and so is every image.
+#pragma once
+
+namespace tp::fw {
+
+#ifdef __OPTIMIZE_SIZE__
+inline constexpr bool kSizeBuild = true;
+#define TP_PIXEL_INLINE
+#else
+inline constexpr bool kSizeBuild = false;
+// A helper of a pixel loop, inlined into it in speed builds.
+#define TP_PIXEL_INLINE [[gnu::always_inline]]
+#endif
+
+}  // namespace tp::fw
