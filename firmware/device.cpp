@@ -145,19 +145,20 @@ class PixelWriter final {
     colours_ = d.region<Rgb8>(st.off_span);
     depth_ = d.region<std::uint32_t>(st.off_depth);
     colour_ = d.region<std::uint8_t>(st.off_colour);
-    counts_ = st.viewport.write_count ? d.region<std::uint8_t>(st.off_counts) : nullptr;
+    const bool counts = st.viewport.write_count;
+    counts_ = counts ? d.region<std::uint8_t>(st.off_counts) : nullptr;
     // Without a depth buffer the depth test passes every pixel; the loops' depth stores go to one
     // row kept for them (Device::layout), the same row for every span.
     const bool depth_test = st.depth_test && st.viewport.depth_buffer;
     depth_row_stride_ = st.viewport.depth_buffer ? width_ : 0;
-    state_ = DrawState{st.viewport.format == PixelFormat::kRgb565, depth_test, counts_ != nullptr};
+    state_ = DrawState{st.viewport.format == PixelFormat::kRgb565, depth_test, counts};
     // The method is the draw's: whether it takes early depth, and whether its colours are computed
     // in the pixel loop (not with the write counts: the linear loops leave them out), is decided
     // once.
     const MethodTraits traits = method_slot(st.method).traits;
     edges_ = traits.reads_edge_positions ? EdgeParameters::kWith : EdgeParameters::kWithout;
     early_depth_ = depth_test && traits.skips_hidden_pixels;
-    linear_ = traits.colours_linear && counts_ == nullptr && !early_depth_;
+    linear_ = traits.colours_linear && !counts && !early_depth_;
     if constexpr (!kSizeBuild) choose_loops();
   }
   // Whether rasterize() steps the edges' parameters for the method's spans.
@@ -267,9 +268,7 @@ class PixelWriter final {
         colours};
     if constexpr (kSizeBuild) {
       // One loop: a span of one colour steps by zero.
-      pixels_written_ += pixels(run.run, state_,
-                                LinearSteps{{colours.c[0], colours.c[1], colours.c[2]},
-                                            {colours.dc[0], colours.dc[1], colours.dc[2]}});
+      pixels_written_ += pixels(run.run, state_, steps_of(colours));
       return;
     }
     const bool exact_depth = depth_in_range(z >> ScreenPlane::kStepFrac) &&
@@ -317,6 +316,9 @@ class PixelWriter final {
       return px;
     }
   };
+  static LinearSteps steps_of(const LinearColours& c) {
+    return {{c.c[0], c.c[1], c.c[2]}, {c.dc[0], c.dc[1], c.dc[2]}};
+  }
   // The draw's pixel format, depth test and write counts, and whether the span's depth words need
   // saturation: constants of each loop instance in speed builds, read per pixel by the loops of
   // size builds (firmware/build.hpp), which always saturate: the same words.
@@ -339,9 +341,8 @@ class PixelWriter final {
   }
   template <bool kRgb565, bool kDepthTest, bool kExactDepth>
   static std::uint64_t write_linear(const LinearRun& r) {
-    const LinearColours& c = r.colours;
     return pixels(r.run, FixedState<kRgb565, kDepthTest, false, kExactDepth>{},
-                  LinearSteps{{c.c[0], c.c[1], c.c[2]}, {c.dc[0], c.dc[1], c.dc[2]}});
+                  steps_of(r.colours));
   }
   template <bool kRgb565, bool kDepthTest>
   static std::uint64_t write_constant(const LinearRun& r) {

@@ -2,49 +2,58 @@
 """Code and read-only data of a Cortex-M image by origin (firmware, port, libgcc, newlib), summed
 from the input sections of its GNU ld link map; the streams (section .streams) are not counted.
 Prints one line per (section, origin): section, origin, bytes. Used by scripts/target-size.sh
-(docs/TARGET.md, "Footprint") and tests/target/check_rodata_budget.sh.
+(docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()) and
+tests/target/check_budget.sh.
 Usage: python3 scripts/map_sizes.py IMAGE.map"""
 import re, sys
-sizes = {}
-section = None
-lines = open(sys.argv[1]).read().split("\n")
-started = False
-for i, line in enumerate(lines):
-    if line.startswith("Linker script and memory map"):
-        started = True
-    if not started:
-        continue
-    m = re.match(r"^(\.[\w.]+)\s+0x", line)  # an output section
-    if m:
-        section = m.group(1)
-        continue
-    # An input section: " .text.name  0xADDR  0xSIZE  object", or its name alone on a line
-    # with the address, size and object on the next.
-    m = re.match(r"^ (\.[\w.\-$]+)\s+(0x[0-9a-f]+)\s+(0x[0-9a-f]+)\s+(\S+)", line)
-    if m:
-        size, obj = int(m.group(3), 16), m.group(4)
-    elif re.match(r"^ (\.[\w.\-$]+)\s*$", line) and i + 1 < len(lines):
-        nxt = lines[i + 1].split()
-        if len(nxt) < 3 or not nxt[0].startswith("0x") or not nxt[1].startswith("0x"):
+
+
+def sizes(map_path):
+    """{(section, origin): bytes} of the image whose GNU ld link map is at map_path."""
+    totals = {}
+    section = None
+    lines = open(map_path).read().split("\n")
+    started = False
+    for i, line in enumerate(lines):
+        if line.startswith("Linker script and memory map"):
+            started = True
+        if not started:
             continue
-        size, obj = int(nxt[1], 16), nxt[2]
-    else:
-        continue
-    if section not in (".text", ".rodata"):
-        continue
-    if "/firmware/" in obj:
-        origin = "firmware"
-    elif "port_" in obj or "main_" in obj or "cost_" in obj:
-        origin = "port (startup, semihosting, main)"
-    elif "streams" in obj:
-        origin = "stream table"
-    elif "libgcc" in obj:
-        origin = "libgcc"
-    elif "libc" in obj or "libg" in obj or "libstdc++" in obj:
-        origin = "newlib"
-    else:
-        origin = "other"
-    sizes[section, origin] = sizes.get((section, origin), 0) + size
-for (section, origin), size in sorted(sizes.items()):
-    if size:
-        print("%-8s %-36s %8d" % (section, origin, size))
+        m = re.match(r"^(\.[\w.]+)\s+0x", line)  # an output section
+        if m:
+            section = m.group(1)
+            continue
+        # An input section: " .text.name  0xADDR  0xSIZE  object", or its name alone on a line
+        # with the address, size and object on the next.
+        m = re.match(r"^ (\.[\w.\-$]+)\s+(0x[0-9a-f]+)\s+(0x[0-9a-f]+)\s+(\S+)", line)
+        if m:
+            size, obj = int(m.group(3), 16), m.group(4)
+        elif re.match(r"^ (\.[\w.\-$]+)\s*$", line) and i + 1 < len(lines):
+            nxt = lines[i + 1].split()
+            if len(nxt) < 3 or not nxt[0].startswith("0x") or not nxt[1].startswith("0x"):
+                continue
+            size, obj = int(nxt[1], 16), nxt[2]
+        else:
+            continue
+        if section not in (".text", ".rodata"):
+            continue
+        if "/firmware/" in obj:
+            origin = "firmware"
+        elif "port_" in obj or "main_" in obj or "cost_" in obj:
+            origin = "port (startup, semihosting, main)"
+        elif "streams" in obj:
+            origin = "stream table"
+        elif "libgcc" in obj:
+            origin = "libgcc"
+        elif "libc" in obj or "libg" in obj or "libstdc++" in obj:
+            origin = "newlib"
+        else:
+            origin = "other"
+        totals[section, origin] = totals.get((section, origin), 0) + size
+    return totals
+
+
+if __name__ == "__main__":
+    for (section, origin), size in sorted(sizes(sys.argv[1]).items()):
+        if size:
+            print("%-8s %-36s %8d" % (section, origin, size))

@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""What each shading method costs in firmware code on the Cortex-M3 at -Os: the "Code by method"
+table of docs/TARGET.md. A port links only the methods it ships (TP_FIRMWARE_METHODS, a mask of
+Method ids; firmware/device.cpp), so for each method this links an image of a base (gouraud,
+which every device needs since it starts with it, and flat, the smallest) plus that method
+alone, and reports its firmware code (.text) and read-only data from the link map
+(scripts/map_sizes.py). "Over the base" is what the method adds; methods share code
+(PointShader, the Kuijk-Blake arcs, the fixed-point functions), so the additions of several
+methods overlap and do not sum.
+
+Only device.cpp reads the mask: it is compiled once per image with the release build's own
+command for the m3-Os configuration, and linked with that build's other objects by its own
+link command (both from `ninja -t commands`), in a temporary folder; the build is not touched.
+Usage: python3 scripts/target-method-size.py [--build DIR] [--methods kb,kb-adaptive]
+(default build/release, built; --methods: one row, the base with those methods together)."""
+import argparse, os, re, shlex, subprocess, sys, tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from map_sizes import sizes  # noqa: E402
+
+CONFIG = "m3-Os"
+BASE = ("flat", "gouraud")
+
+
+def method_ids():
+    """[(name, id)] in the registry's order: names from firmware/registry.hpp's rows, ids from
+    the Method enum of firmware/types.hpp."""
+    types = open(os.path.join(ROOT, "firmware/types.hpp")).read()
+    enum = types[types.index("enum class Method"):]
+    enum = enum[:enum.index("};")]
+    ids = {k: int(v) for k, v in re.findall(r"\b(k\w+) = (\d+)", enum)}
+    registry = open(os.path.join(ROOT, "firmware/registry.hpp")).read()
+    rows = re.findall(r"\{Method::(k\w+),\s*\"([\w-]+)\"", registry)
+    if not rows:
+        sys.exit("target-method-size.py: no method rows found in firmware/registry.hpp")
+    return [(name, ids[enumerator]) for enumerator, name in rows]
+
+
+def ninja_command(target_dir, output):
+    """The last command ninja runs to build `output` (relative to the target build), as argv."""
+    out = subprocess.run(["ninja", "-C", target_dir, "-t", "commands", output], check=True,
+                         capture_output=True, text=True).stdout.strip().split("\n")
+    return shlex.split(out[-1].removeprefix(": && ").removesuffix(" && :"))
+
+
+def without_depfile(argv):
+    """argv without gcc's dependency-file options (-MD, -MT X, -MF X)."""
+    out, skip = [], False
+    for a in argv:
+        if skip:
+            skip = False
+        elif a in ("-MT", "-MF"):
+            skip = True
+        elif a != "-MD":
+            out.append(a)
+    return out
+
+
+def replaced(argv, old, new):
+    if old not in argv:
+        sys.exit("target-method-size.py: %s not in the command %s" % (old, " ".join(argv)))
+    return [new if a == old else a for a in argv]
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Firmware code by method, Cortex-M3 -Os "
+                                     "(docs/TARGET.md, \"Code by method\").")
+    parser.add_argument("--build", default="build/release",
+                        help="the build folder, already built (default build/release)")
+    parser.add_argument("--methods", help="comma-separated: one row, the base with these "
+                        "methods together (what a port that ships them links)")
+    args = parser.parse_args()
+    target_dir = os.path.join(ROOT, args.build, "target")
+    image = "%s-kb.elf" % CONFIG
+    if not os.path.exists(os.path.join(target_dir, image)):
+        sys.exit("target-method-size.py: %s/%s missing (build the release preset first)"
+                 % (target_dir, image))
+    ids = method_ids()
+    by_name = dict(ids)
+    chosen = None
+    if args.methods is not None:
+        chosen = [m for m in args.methods.split(",") if m]
+        unknown = [m for m in chosen if m not in by_name]
+        if unknown or not chosen:
+            sys.exit("target-method-size.py: --methods: unknown method(s) %s (known: %s)"
+                     % (", ".join(unknown) or "(none given)", ", ".join(by_name)))
+    device_obj = "CMakeFiles/port_%s.dir%s/firmware/device.cpp.obj" % (CONFIG, ROOT)
+    compile_cmd = without_depfile(ninja_command(target_dir, device_obj))
+    link_cmd = ninja_command(target_dir, image)
+    map_flag = [a for a in link_cmd if a.startswith("-Wl,-Map=")]
+    if len(map_flag) != 1:
+        sys.exit("target-method-size.py: no single -Wl,-Map= in the link command")
+
+    def footprint(tag, names, tmp):
+        mask = "|".join("(1ull<<%d)" % by_name[n] for n in names)
+        # In a folder named firmware: map_sizes.py tells firmware objects by their path.
+        obj = os.path.join(tmp, "firmware", tag + ".device.o")
+        elf = os.path.join(tmp, tag + ".elf")
+        mapfile = os.path.join(tmp, tag + ".map")
+        cc = replaced(compile_cmd, device_obj, obj) + ["-DTP_FIRMWARE_METHODS=(%s)" % mask]
+        subprocess.run(cc, cwd=target_dir, check=True)
+        ld = replaced(replaced(link_cmd, device_obj, obj), image, elf)
+        ld = replaced(ld, map_flag[0], "-Wl,-Map=" + mapfile)
+        subprocess.run(ld, cwd=target_dir, check=True)
+        s = sizes(mapfile)
+        return s.get((".text", "firmware"), 0), s.get((".rodata", "firmware"), 0)
+
+    def row(label, text, rodata, base_text):
+        print("| %s | %s | %s | %s |" % (label, format(text, ","),
+                                         format(text - base_text, "+,"), format(rodata, ",")))
+
+    with tempfile.TemporaryDirectory() as tmp:
+        os.mkdir(os.path.join(tmp, "firmware"))
+        base_text, base_rodata = footprint("base", list(BASE), tmp)
+        print("| method | code | over the base | read-only data |")
+        print("|---|---:|---:|---:|")
+        print("| base: %s | %s | | %s |" % (" + ".join(BASE), format(base_text, ","),
+                                             format(base_rodata, ",")))
+        if chosen is not None:
+            names = list(BASE) + [m for m in chosen if m not in BASE]
+            row(" + ".join(chosen), *footprint("chosen", names, tmp), base_text)
+            return
+        for name, _ in ids:
+            if name not in BASE:
+                row(name, *footprint(name, list(BASE) + [name], tmp), base_text)
+        row("every method", *footprint("every", [n for n, _ in ids], tmp), base_text)
+
+
+if __name__ == "__main__":
+    main()
