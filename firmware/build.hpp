@@ -2,7 +2,8 @@
 // (-O2) forces the per-pixel helpers inline (TP_PIXEL_INLINE), unrolls the small loops it is
 // given unrolled forms of, and has a pixel loop instance for every combination of pixel format,
 // depth test, write counts and depth saturation, so that no pixel branches on them. A size build
-// (-Os, which defines __OPTIMIZE_SIZE__) leaves the inlining to the compiler, takes the general
+// (-Os, which defines __OPTIMIZE_SIZE__) leaves the inlining to the compiler (the Cortex-M size
+// images ask it to inline less: TP_SIZE_FLAGS in target/CMakeLists.txt), takes the general
 // loops, and has one pixel loop per colour source that reads the draw's state per pixel
 // (firmware/device.cpp, PixelWriter; docs/TARGET.md, "Footprint"). The arithmetic is the same in
 // both, and so is every image.

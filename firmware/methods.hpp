@@ -468,7 +468,12 @@ class BlinnMapMethod final : public ShadingMethod {
     QuadraticMethod::Coefficients quadratic[4];
   };
   void refresh(const ShadeContext& ctx);
-  enum class Interpolation { kLinear, kForward, kPerPixel };
+  // kAny: the span's way read at run time, one pixel loop for all three (size builds).
+  enum class Interpolation { kLinear, kForward, kPerPixel, kAny };
+  Interpolation interpolation() const {
+    return !quadratic_ ? Interpolation::kLinear
+                       : (forward_ ? Interpolation::kForward : Interpolation::kPerPixel);
+  }
   template <Interpolation kMode>
   void shade_pixels(int length, Rgb8* out);
 

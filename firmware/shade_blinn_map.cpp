@@ -2,6 +2,7 @@
 // texture coordinates at the vertices (blinn-map) or the six points (quadratic-blinn-map); the
 // pixel loop interpolates them, linearly in screen space or by eq. 4.1, and sums the lights'
 // diffuse and specular texture samples.
+#include "firmware/build.hpp"
 #include "firmware/methods.hpp"
 #include "firmware/six_points.hpp"
 
@@ -153,7 +154,9 @@ void BlinnMapMethod::shade_span(const Span& s, Rgb8* out) {
         t.d1[a] = f.d1;
       }
     }
-  if (!quadratic_)
+  if constexpr (kSizeBuild)
+    shade_pixels<Interpolation::kAny>(length, out);
+  else if (!quadratic_)
     shade_pixels<Interpolation::kLinear>(length, out);
   else if (forward_)
     shade_pixels<Interpolation::kForward>(length, out);
@@ -163,9 +166,11 @@ void BlinnMapMethod::shade_span(const Span& s, Rgb8* out) {
       static_cast<std::uint64_t>(length) * static_cast<std::uint64_t>(lights_);
 }
 
-// The pixel loop, one instance per way of interpolating the coordinates.
+// The pixel loop, one instance per way of interpolating the coordinates in speed builds, where
+// mode is a constant and only its branch is compiled; one for all three in size builds.
 template <BlinnMapMethod::Interpolation kMode>
 void BlinnMapMethod::shade_pixels(int length, Rgb8* out) {
+  const Interpolation mode = kMode == Interpolation::kAny ? interpolation() : kMode;
   constexpr int kForwardShift = QuadraticMethod::kForwardFrac - 30;
   constexpr int kAccFrac = 30 + kTexelFrac;  // weights Q.30 times samples Q1.15
   constexpr std::int64_t kAccOne = std::int64_t{1} << kAccFrac;
@@ -179,16 +184,16 @@ void BlinnMapMethod::shade_pixels(int length, Rgb8* out) {
                                    ambient_[2] << kTexelFrac};
   for (int x = 0; x < length; ++x) {
     std::int64_t b[3];  // (s, t) = (b1, b2) for eq. 4.1
-    if constexpr (kMode == Interpolation::kPerPixel) bary_.next(b);
+    if (mode == Interpolation::kPerPixel) bary_.next(b);
     std::int64_t acc[3] = {ambient[0], ambient[1], ambient[2]};
     for (int j = 0; j < lights; ++j) {
       LightTerm& t = terms[j];
       std::int64_t c[kCoordinates];  // Q.29
       for (int a = 0; a < kCoordinates; ++a) {
-        if constexpr (kMode == Interpolation::kLinear) {  // one addition per coordinate
+        if (mode == Interpolation::kLinear) {  // one addition per coordinate
           c[a] = t.at[a] >> (40 - kCoordFrac);
           t.at[a] += t.linear[a].step;
-        } else if constexpr (kMode == Interpolation::kForward) {  // two additions
+        } else if (mode == Interpolation::kForward) {  // two additions
           c[a] = t.at[a] >> kForwardShift;
           t.at[a] += t.d1[a];
           t.d1[a] += t.d2[a];

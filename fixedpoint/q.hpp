@@ -20,6 +20,16 @@
 
 namespace tp::fx {
 
+// Size builds (-Os defines __OPTIMIZE_SIZE__) keep one out-of-line copy of round_shift_right and
+// clamp below: on a 32-bit core each is a dozen instructions of 64-bit arithmetic, which GCC at -Os
+// otherwise copies into about a hundred callers (2,084 bytes of the Cortex-M3 -Os image; docs/
+// TARGET.md, "Footprint"). Speed builds inline them; the results are the same.
+#ifdef __OPTIMIZE_SIZE__
+#define TP_FX_OUTLINE [[gnu::noinline]]
+#else
+#define TP_FX_OUTLINE
+#endif
+
 // Raw-integer vocabulary, for code that works on raw values between Q types (the rounding and
 // saturation every Q operation below is built from):
 //   round_shift_right(v, s)  v / 2^s rounded to nearest, ties away from zero (the rounding of
@@ -28,13 +38,13 @@ namespace tp::fx {
 
 // For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
 // shift: v >> 63 supplies the −1 without a branch on the sign.
-constexpr std::int64_t round_shift_right(std::int64_t v, int shift) {
+TP_FX_OUTLINE constexpr std::int64_t round_shift_right(std::int64_t v, int shift) {
   if (shift <= 0) return v;
   const std::int64_t half = std::int64_t{1} << (shift - 1);
   return (v + half + (v >> 63)) >> shift;
 }
 
-constexpr std::int64_t clamp(std::int64_t v, std::int64_t lo, std::int64_t hi) {
+TP_FX_OUTLINE constexpr std::int64_t clamp(std::int64_t v, std::int64_t lo, std::int64_t hi) {
   return v < lo ? lo : (v > hi ? hi : v);
 }
 

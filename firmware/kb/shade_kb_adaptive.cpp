@@ -16,6 +16,7 @@
 #include "firmware/kb/kb_adaptive.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <utility>
 
@@ -218,10 +219,34 @@ std::int64_t worst_point_error(const std::int64_t s[6], const std::int32_t* cons
   ((worst = std::max(worst, point_error<K>(s, v, ch))), ...);
   return worst;
 }
+// The same weights as small integers, for size builds' loop over the check points (54 bytes of
+// table instead of nine specialised copies of the sum).
+static_assert([] {
+  for (const SampleWeights& p : kCheckWeights)
+    for (const std::int64_t w : p.w)
+      if (w < -128 || w > 127) return false;
+  return true;
+}());
+inline constexpr auto kCheckWeights8 = [] {
+  std::array<std::array<std::int8_t, 6>, 9> t{};
+  for (std::size_t k = 0; k < 9; ++k)
+    for (std::size_t j = 0; j < 6; ++j) t[k][j] = static_cast<std::int8_t>(kCheckWeights[k].w[j]);
+  return t;
+}();
 // max over the nine check points of |g − q| for channel ch (rounded up).
 std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
   const std::int64_t s[6] = {v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]};
-  return (worst_point_error(s, v, ch, std::make_index_sequence<9>{}) + 7) / 8;
+  if constexpr (kSizeBuild) {
+    std::int64_t worst = 0;
+    for (std::size_t k = 0; k < 9; ++k) {
+      std::int64_t q8 = 0;
+      for (std::size_t j = 0; j < 6; ++j) q8 += kCheckWeights8[k][j] * s[j];
+      worst = std::max(worst, abs64(8 * std::int64_t{v[6 + k][ch]} - q8));
+    }
+    return (worst + 7) / 8;
+  } else {
+    return (worst_point_error(s, v, ch, std::make_index_sequence<9>{}) + 7) / 8;
+  }
 }
 
 enum class TerminatorSign : std::uint8_t { kLit, kDark, kCrossing };

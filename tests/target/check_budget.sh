@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The firmware's code or read-only data within issue 12's budget for a small part: fails, with
-# the figure, when an image's firmware SECTION (.text or .rodata) exceeds BYTES. Summed from the
-# image's link map by scripts/map_sizes.py (docs/TARGET.md, "Footprint").
+# The firmware's code or read-only data within a budget (issue 12's for a small part, or the
+# all-methods image's ceiling): fails, with the figure, when an image's firmware SECTION (.text or
+# .rodata) exceeds BYTES. Summed from the image's link map by scripts/map_sizes.py (docs/TARGET.md,
+# "Footprint").
 #   check_budget.sh MAP_SIZES.py IMAGE.map SECTION BYTES
 set -euo pipefail
 sizes=$(python3 "$1" "$2")
