@@ -287,7 +287,8 @@ class PointShader {
   // (steppable_: exact integer steps, so a pixel gets the same value whichever run it starts),
   // else the point formed at each pixel. The same bits either way a run is cut.
   void shade_pixels(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const {
-    if (steppable_ && !point_lights_) {
+    // Without point lights the kPoint loop computes the same values; a size build keeps it alone.
+    if (!kSizeBuild && steppable_ && !point_lights_) {
       shade_run<false>(span_stepper(xa, y), nullptr, n, out);
       return;
     }
@@ -499,10 +500,11 @@ class PointShader {
                 std::uint32_t unclamped = 0) const {
     Sums acc;
     int k = 0;
-    if (pt.inside && !point_lights_ && ctx_->eye == EyeMode::kFinite) {
+    if (!kSizeBuild && pt.inside && !point_lights_ && ctx_->eye == EyeMode::kFinite) {
       // Directional lights, finite eye (as shade_stepped's lean loop). The two loops repeat the
       // terminator's handling on purpose: one lambda for both cost 16 instructions per pixel on
-      // teapot-l8 (its captured state left the registers).
+      // teapot-l8 (its captured state left the registers). A size build keeps the general loop
+      // alone: for these lights it computes the same values.
       for (int li = 0; li < lights_; ++li) {
         const Vec3u& d = direction_[li];
         const std::int64_t dot_l = dot_unit(pt.normal, d);

@@ -39,14 +39,14 @@ constexpr To round_products(const wide_t* terms, int count) {
 }  // namespace detail
 
 template <QType To, QType A, QType B>
-constexpr To dot(Vec3<A> a, Vec3<B> b) {
+constexpr To dot(const Vec3<A>& a, const Vec3<B>& b) {
   const detail::wide_t t[3] = {detail::raw_product(a.x, b.x), detail::raw_product(a.y, b.y),
                                detail::raw_product(a.z, b.z)};
   return detail::round_products<To, A, B>(t, 3);
 }
 
 template <QType To, QType A, QType B>
-constexpr Vec3<To> cross(Vec3<A> a, Vec3<B> b) {
+constexpr Vec3<To> cross(const Vec3<A>& a, const Vec3<B>& b) {
   const detail::wide_t x[2] = {detail::raw_product(a.y, b.z), -detail::raw_product(a.z, b.y)};
   const detail::wide_t y[2] = {detail::raw_product(a.z, b.x), -detail::raw_product(a.x, b.z)};
   const detail::wide_t z[2] = {detail::raw_product(a.x, b.y), -detail::raw_product(a.y, b.x)};
@@ -55,35 +55,35 @@ constexpr Vec3<To> cross(Vec3<A> a, Vec3<B> b) {
 }
 
 template <QType To, QType T>
-constexpr To length_squared(Vec3<T> v) {
+constexpr To length_squared(const Vec3<T>& v) {
   return dot<To>(v, v);
 }
 
 template <QType T>
-constexpr Vec3<T> add_sat(Vec3<T> a, Vec3<T> b) {
+constexpr Vec3<T> add_sat(const Vec3<T>& a, const Vec3<T>& b) {
   return {add_sat(a.x, b.x), add_sat(a.y, b.y), add_sat(a.z, b.z)};
 }
 template <QType T>
-constexpr Vec3<T> sub_sat(Vec3<T> a, Vec3<T> b) {
+constexpr Vec3<T> sub_sat(const Vec3<T>& a, const Vec3<T>& b) {
   return {sub_sat(a.x, b.x), sub_sat(a.y, b.y), sub_sat(a.z, b.z)};
 }
 template <QType T>
-constexpr Vec3<T> neg_sat(Vec3<T> a) {
+constexpr Vec3<T> neg_sat(const Vec3<T>& a) {
   return {neg_sat(a.x), neg_sat(a.y), neg_sat(a.z)};
 }
 // Each component times a scalar, rounded and saturated into To.
 template <QType To, QType T, QType S>
-constexpr Vec3<To> scale(Vec3<T> v, S s) {
+constexpr Vec3<To> scale(const Vec3<T>& v, S s) {
   return {mul_sat<To>(v.x, s), mul_sat<To>(v.y, s), mul_sat<To>(v.z, s)};
 }
 // Per-component format change, rounded and saturated.
 template <QType To, QType T>
-constexpr Vec3<To> convert(Vec3<T> v) {
+constexpr Vec3<To> convert(const Vec3<T>& v) {
   return {convert<To>(v.x), convert<To>(v.y), convert<To>(v.z)};
 }
 
 template <QType To, QType T>
-constexpr bool try_normalize(Vec3<T> v, Vec3<To>& out) {
+constexpr bool try_normalize(const Vec3<T>& v, Vec3<To>& out) {
   static_assert(2 * (T::int_bits + T::frac_bits) <= 62, "squares must sum exactly in 64 bits");
   const detail::wide_t sq[3] = {detail::raw_product(v.x, v.x), detail::raw_product(v.y, v.y),
                                 detail::raw_product(v.z, v.z)};
@@ -111,7 +111,7 @@ constexpr bool try_normalize(Vec3<T> v, Vec3<To>& out) {
 }
 
 template <QType To, QType T>
-constexpr Vec3<To> normalize(Vec3<T> v) {
+constexpr Vec3<To> normalize(const Vec3<T>& v) {
   Vec3<To> out{To::zero(), To::zero(), To::zero()};
   (void)try_normalize(v, out);
   return out;

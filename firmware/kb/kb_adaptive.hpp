@@ -127,6 +127,9 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void cell_points(const Cell& c, const std::int32_t* v[15]);
   void shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v, std::int32_t n,
                       Rgb8* out) const;
+  TP_PIXEL_INLINE static inline void shade_terms(const SteppedQuadratic q[3], int crossings,
+                                                 const Crossing* crossing, std::int64_t u,
+                                                 std::int64_t v, std::int32_t n, Rgb8* out);
   template <std::size_t K>
   static void shade_crossings(const QuadStep st[], const Crossing* crossing, std::int32_t n,
                               Rgb8* out);

@@ -573,6 +573,12 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 
 void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u,
                                       std::int64_t v, std::int32_t n, Rgb8* out) const {
+  if constexpr (kSizeBuild) {
+    // shade_terms with no terminator: the same seeds and steps, and its quad_level rounds
+    // in-range values as the loop below does (firmware/build.hpp).
+    shade_terms(q, 0, nullptr, u, v, n, out);
+    return;
+  }
   QuadStep r, g, b;
   if (n <= kShortPiece) {
     // The channels share their steps (one cell): the monomials at the first two pixels, once.
@@ -668,36 +674,37 @@ void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_
     fill_quadratic(leaf.q, leaf.in_range, u, v, n, out);
 }
 
-// A cell that a terminator crosses: the colours' quadratics plus, per crossing terminator, its
-// weights times max(0, −N·L), N·L forward-differenced like the colours.
-void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v,
-                                      std::int32_t n, Rgb8* out) const {
+// The colours' quadratics q plus, per crossing terminator, its weights times max(0, −N·L), N·L
+// forward-differenced like the colours. With no crossing it is fill_quadratic's clamped loop,
+// which a size build takes it for.
+void KbAdaptiveMethod::shade_terms(const SteppedQuadratic q[3], int crossings,
+                                   const Crossing* crossing, std::int64_t u, std::int64_t v,
+                                   std::int32_t n, Rgb8* out) {
   QuadStep st[3 + kMaxTerminators];
-  const Crossing* crossing = crossings_ + leaf.first;
   if (n <= kShortPiece) {
     const Monomials at = monomials(u, v);
-    const Monomials second = n > 1 ? monomials(u + leaf.q[0].du, v + leaf.q[0].dv) : at;
+    const Monomials second = n > 1 ? monomials(u + q[0].du, v + q[0].dv) : at;
     const Monomials* next = n > 1 ? &second : nullptr;
-    for (int c = 0; c < 3; ++c) st[c] = seed_short(leaf.q[c], at, next);
-    for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_short(crossing[k].nl, at, next);
+    for (int c = 0; c < 3; ++c) st[c] = seed_short(q[c], at, next);
+    for (int k = 0; k < crossings; ++k) st[3 + k] = seed_short(crossing[k].nl, at, next);
   } else {
-    for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(leaf.q[c], u, v, n);
-    for (int k = 0; k < leaf.crossing; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n);
+    for (int c = 0; c < 3; ++c) st[c] = seed_quadratic(q[c], u, v, n);
+    for (int k = 0; k < crossings; ++k) st[3 + k] = seed_quadratic(crossing[k].nl, u, v, n);
   }
   // The common cases with their loops unrolled (the states in registers), in speed builds
   // (firmware/build.hpp).
   if constexpr (!kSizeBuild) {
-    switch (leaf.crossing) {
+    switch (crossings) {
       case 1: shade_crossings<1>(st, crossing, n, out); return;
       case 2: shade_crossings<2>(st, crossing, n, out); return;
       case 3: shade_crossings<3>(st, crossing, n, out); return;
       default: break;
     }
   }
-  const int count = 3 + leaf.crossing;
+  const int count = 3 + crossings;
   for (std::int32_t x = 0; x < n; ++x) {
     std::int64_t colour[3] = {st[0].v, st[1].v, st[2].v};
-    for (int k = 0; k < leaf.crossing; ++k) {
+    for (int k = 0; k < crossings; ++k) {
       // N·L: Q.24 samples stepped in the state's scale (× 2^(40 − 14)); below zero the diffuse
       // was left out of the colours.
       const std::int64_t nl = st[3 + k].v;
@@ -714,7 +721,13 @@ void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int
   }
 }
 
-// shade_crossing's loop for K terminators, unrolled, the same arithmetic: Q.24 × Q.14 << 2 -> Q.40.
+// A cell that terminators cross.
+void KbAdaptiveMethod::shade_crossing(const Leaf& leaf, std::int64_t u, std::int64_t v,
+                                      std::int32_t n, Rgb8* out) const {
+  shade_terms(leaf.q, leaf.crossing, crossings_ + leaf.first, u, v, n, out);
+}
+
+// shade_terms' loop for K terminators, unrolled, the same arithmetic: Q.24 × Q.14 << 2 -> Q.40.
 template <std::size_t K>
 void KbAdaptiveMethod::shade_crossings(const QuadStep st[], const Crossing* crossing,
                                        std::int32_t n, Rgb8* out) {
