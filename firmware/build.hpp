@@ -14,10 +14,14 @@ namespace tp::fw {
 #ifdef __OPTIMIZE_SIZE__
 inline constexpr bool kSizeBuild = true;
 #define TP_PIXEL_INLINE
+// A small helper of 64-bit arithmetic that GCC at -Os would still copy into each caller, kept
+// out of line in size builds (as fixedpoint/q.hpp's TP_FX_OUTLINE).
+#define TP_SIZE_OUTLINE [[gnu::noinline]]
 #else
 inline constexpr bool kSizeBuild = false;
 // A helper of a pixel loop, inlined into it in speed builds.
 #define TP_PIXEL_INLINE [[gnu::always_inline]]
+#define TP_SIZE_OUTLINE
 #endif
 
 }  // namespace tp::fw

@@ -4,19 +4,19 @@
 // result is rounded once.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "firmware/method.hpp"
 #include "fixedpoint/arith.hpp"
 #include "fixedpoint/divide.hpp"
+#include "fixedpoint/q.hpp"
 #include "fixedpoint/wide.hpp"
 
 namespace tp::fw {
 
 // Shift that brings a non-negative magnitude below 2^bits.
 constexpr int shift_to_fit(std::uint64_t mag, int bits) {
-  const int w = static_cast<int>(std::bit_width(mag));
+  const int w = fx::bit_width(mag);
   return w > bits ? w - bits : 0;
 }
 

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 
+#include "firmware/build.hpp"
 #include "firmware/counters.hpp"
 #include "firmware/types.hpp"
 
@@ -56,8 +57,8 @@ struct Triangle {
 
 // Edge function of the directed edge a->b at subpixel point (px, py): exact, and for a triangle
 // with area2 > 0 it is the barycentric weight of the opposite vertex times area2.
-constexpr std::int64_t edge_function(const ShadeVertex& a, const ShadeVertex& b, std::int64_t px,
-                                     std::int64_t py) {
+TP_SIZE_OUTLINE constexpr std::int64_t edge_function(const ShadeVertex& a, const ShadeVertex& b,
+                                                     std::int64_t px, std::int64_t py) {
   return (std::int64_t{b.sx} - a.sx) * (py - a.sy) - (std::int64_t{b.sy} - a.sy) * (px - a.sx);
 }
 

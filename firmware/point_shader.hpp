@@ -100,11 +100,10 @@ class PointShader {
     // light's r_i·(L − P_i) only as far as keeps its plane below 2^60 inside (prepare_planes).
     // The per-pixel steps dk_i·(.) must fit as well: |dk_i| < 2^bits(area2), which only slivers
     // (long edges around a small area) fail; they keep the per-pixel weights.
-    const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
+    const int scale = fx::bit_width(static_cast<std::uint64_t>(tri.area2));
     const Lambdas dk = lambdas_step_x(tri);
     const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
-    const int step_bits =
-        static_cast<int>(std::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2])));
+    const int step_bits = fx::bit_width(mag(dk.l[0]) | mag(dk.l[1]) | mag(dk.l[2]));
     steppable_ = tri.area2 < (std::int64_t{1} << 30) && step_bits <= scale;
     planes_ready_ = false;  // formed by the first span_stepper: a sampled triangle needs none
   }
@@ -200,7 +199,7 @@ class PointShader {
   // not change a bit).
   void prepare_planes() const {
     const Triangle& tri = *tri_;
-    const int scale = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(tri.area2)));
+    const int scale = fx::bit_width(static_cast<std::uint64_t>(tri.area2));
     const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
     const PlaneBasis basis = plane_basis(tri);
     std::int64_t weighted_normal[3][3], weighted_eye[3][3];  // r_i·N_i, r_i·P_i · 2^-bits(area2)
@@ -225,8 +224,8 @@ class PointShader {
     // Inside the triangle n and p are convex combinations of area2·(r_i N_i) and area2·(r_i P_i)
     // (k_i >= 0, Σ k_i = area2): every component below 2^(bits(area2) + bits(max)). One cut for
     // the whole triangle brings them to 30 bits, instead of measuring every pixel's.
-    normal_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_normal)));
-    eye_cut_ = cut_for(scale + static_cast<int>(std::bit_width(max_eye)));
+    normal_cut_ = cut_for(scale + fx::bit_width(max_normal));
+    eye_cut_ = cut_for(scale + fx::bit_width(max_eye));
     normal_bias_ = cut_bias(normal_cut_);
     eye_bias_ = cut_bias(eye_cut_);
     // Each point light's v = Σ k_i r_i (L − P_i) (|L − P_i| < 2^32 raw, r_i <= 2^30): the
@@ -248,7 +247,7 @@ class PointShader {
           max_w |= mag(w[i][j]);
         }
       }
-      const int sh = scale + static_cast<int>(std::bit_width(max_w)) - 60;
+      const int sh = scale + fx::bit_width(max_w) - 60;
       if (sh > 0)
         for (auto& row : w)
           for (std::int64_t& x : row) x = fx::round_shift_right(x, sh);
@@ -341,8 +340,8 @@ class PointShader {
       if (kPoint && l.type == LightType::kPoint) {
         const std::int64_t* v = ls->v[li];
         const auto mag = [](std::int64_t x) { return static_cast<std::uint64_t>(x < 0 ? -x : x); };
-        const CutVector lv = cut_vector(
-            v, cut_for(static_cast<int>(std::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2])))));
+        const CutVector lv =
+            cut_vector(v, cut_for(fx::bit_width(mag(v[0]) | mag(v[1]) | mag(v[2]))));
         normal_light = cosine(n, lv);
         const std::int64_t light_eye = finite ? -cosine(e, lv) : over_length(lv.c[2], lv);
         ndh = specular_cosine(normal_light + normal_eye, light_eye);
@@ -402,7 +401,7 @@ class PointShader {
     Point pt;
     std::int64_t sum = mu[0] + mu[1] + mu[2];
     if (sum == 0) return pt;  // not inside the triangle
-    const int sh = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(sum))) - 30;
+    const int sh = fx::bit_width(static_cast<std::uint64_t>(sum)) - 30;
     for (int i = 0; i < 3; ++i) mu[i] = sh > 0 ? mu[i] >> sh : mu[i] << -sh;
     pt.s = mu[0] + mu[1] + mu[2];
     // n: |mu|·2^30 <= 2^60; p: |mu|·2^31 <= 2^61.
@@ -631,7 +630,7 @@ class PointShader {
 
   // Weights are cut to 28 bits so that weight × r (Q1.30) stays below 2^59.
   static int shift_for(std::int64_t bits) {
-    const int w = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(bits)));
+    const int w = fx::bit_width(static_cast<std::uint64_t>(bits));
     return w > 28 ? w - 28 : 0;
   }
   // Q.30 radiance -> level in Q.14, NOT clamped to [0, 255]: the output clamps per pixel, so

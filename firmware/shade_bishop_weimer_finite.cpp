@@ -3,9 +3,9 @@
 // N·L / (|N| |L|) with L varying, each replaced by its second-order Taylor expansion about the
 // triangle's centre (BishopWeimerMethod::expand_pair); the rest, and the pixel loop, are
 // bishop-weimer's.
-#include <bit>
 
 #include "firmware/methods.hpp"
+#include "fixedpoint/q.hpp"
 
 namespace tp::fw {
 namespace {
@@ -60,7 +60,7 @@ void light_vectors(const Triangle& tri, const LightState& l, std::int64_t v[3][3
     }
   }
   // |v| < 2^32 (coordinates below 2^30 raw); the light at a vertex gives a zero vector there.
-  const int width = static_cast<int>(std::bit_width(largest));
+  const int width = fx::bit_width(largest);
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 3; ++c)
       v[i][c] = width > 30 ? v[i][c] >> (width - 30) : v[i][c] * (std::int64_t{1} << (30 - width));

@@ -19,6 +19,11 @@ std::int64_t dot30(const Vec3u& n, const std::int32_t v[3]) {
           std::int64_t{n.z.raw()} * v[2]) >>
          30;
 }
+// n·v for the normal or its step n (kF fraction bits) and a light's L or H (Q1.30): a numerator
+// or its step, at kF + 30 fraction bits.
+std::int64_t numerator(const std::int64_t n[3], const std::int32_t v[3]) {
+  return n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+}
 
 }  // namespace
 
@@ -84,10 +89,10 @@ void DuffMethod::start_span(const Span& s) {
   for (int j = 0; j < lights_; ++j) {
     const LightTerm& t = light_[j];
     Numerators& u = num_[j];
-    u.d = n[0] * t.l[0] + n[1] * t.l[1] + n[2] * t.l[2];
-    u.dd = st[0] * t.l[0] + st[1] * t.l[1] + st[2] * t.l[2];
-    u.h = n[0] * t.h[0] + n[1] * t.h[1] + n[2] * t.h[2];
-    u.dh = st[0] * t.h[0] + st[1] * t.h[1] + st[2] * t.h[2];
+    u.d = numerator(n, t.l);
+    u.dd = numerator(st, t.l);
+    u.h = numerator(n, t.h);
+    u.dh = numerator(st, t.h);
   }
 }
 

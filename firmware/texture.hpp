@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "firmware/build.hpp"
 #include "firmware/interp.hpp"
 #include "firmware/method.hpp"
 
@@ -30,7 +31,7 @@ constexpr int texture_texels(int log2_cells) {
 }
 
 // Sample i's coordinate, -1 + 2 i / cells, Q.29.
-constexpr std::int64_t grid_coordinate(int i, int log2_cells) {
+TP_SIZE_OUTLINE constexpr std::int64_t grid_coordinate(int i, int log2_cells) {
   return (std::int64_t{i} << (kCoordFrac + 1 - log2_cells)) - kCoordOne;
 }
 

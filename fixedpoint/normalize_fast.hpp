@@ -18,7 +18,6 @@
 // component (1.6·10^-9), pinned at 2.5.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "fixedpoint/q.hpp"
@@ -36,8 +35,8 @@ struct RsqrtFast {
 };
 inline RsqrtFast rsqrt_fast(detail::u64 s) {
   using detail::u64;
-  int e = static_cast<int>(std::bit_width(s)) - 32;  // t = s·2^-e in [2^31, 2^32) ...
-  e += e & 1;                                        // ... or [2^30, 2^31) for an even e
+  int e = bit_width(s) - 32;  // t = s·2^-e in [2^31, 2^32) ...
+  e += e & 1;                 // ... or [2^30, 2^31) for an even e
   const u64 t = e >= 0 ? s >> e : s << -e;
   u64 r = u64{detail::rsqrt_seed(static_cast<std::uint32_t>(t))} << 15;  // Q.15 -> Q2.30
   for (int it = 0; it < 2; ++it) {
@@ -52,7 +51,7 @@ inline RsqrtFast rsqrt_fast(detail::u64 s) {
 inline Vec3<q1_30> normalize_fast(std::int64_t x, std::int64_t y, std::int64_t z) {
   using detail::u64;
   const auto mag = [](std::int64_t v) { return static_cast<u64>(v < 0 ? -v : v); };
-  const int w = static_cast<int>(std::bit_width(mag(x) | mag(y) | mag(z)));
+  const int w = bit_width(mag(x) | mag(y) | mag(z));
   // Cut to 30 bits, rounding half up (the direction alone matters, so the rounding need not be
   // symmetric); |c| <= 2^30.
   const int cut = w > 30 ? w - 30 : 0;

@@ -14,6 +14,7 @@
 // Header-only and integer-only: no float, no heap, no exceptions, no I/O.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -35,6 +36,8 @@ namespace tp::fx {
 //   round_shift_right(v, s)  v / 2^s rounded to nearest, ties away from zero (the rounding of
 //                            convert and mul_sat); exact for |v| < 2^62.
 //   clamp(v, lo, hi)         v limited to [lo, hi] (lo <= hi).
+//   bit_width(m)             the bits of the magnitude m, std::bit_width's as an int (the
+//                            shift that normalises m; 0 for 0).
 
 // For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
 // shift: v >> 63 supplies the −1 without a branch on the sign.
@@ -46,6 +49,11 @@ TP_FX_OUTLINE constexpr std::int64_t round_shift_right(std::int64_t v, int shift
 
 TP_FX_OUTLINE constexpr std::int64_t clamp(std::int64_t v, std::int64_t lo, std::int64_t hi) {
   return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// A count of leading zeros of a 64-bit value is some ten instructions on a 32-bit core.
+TP_FX_OUTLINE constexpr int bit_width(std::uint64_t m) {
+  return static_cast<int>(std::bit_width(m));
 }
 
 namespace detail {

@@ -15,7 +15,6 @@
 // tests/fixedpoint/test_quat.cpp.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "fixedpoint/q.hpp"
@@ -83,7 +82,7 @@ constexpr To round128(U128 v, int sh) {
 // truncated low bits change p by < 2^-63 relative, 1/sqrt(p) by < 2^-64: far below any output.
 constexpr RsqrtResult rsqrt128(U128 p, int frac) {
   if (p.hi == 0) return rsqrt_core(p.lo, frac);
-  const int k = 64 - std::countl_zero(p.hi);  // 1..64: bits to drop so that p fits u64
+  const int k = bit_width(p.hi);  // 1..64: bits to drop so that p fits u64
   const u64 u = k == 64 ? p.hi : (p.hi << (64 - k)) | (p.lo >> k);
   return rsqrt_core(u, frac - k);
 }

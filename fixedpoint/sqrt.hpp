@@ -37,7 +37,7 @@ struct RootResult {
 constexpr RootResult isqrt_shifted(u64 u, int e, u64 limit) {
   RootResult r;
   if (u == 0) return r;
-  const int bits = 64 - std::countl_zero(u) + e;
+  const int bits = bit_width(u) + e;
   u64 rem = 0;
   for (int i = (bits + 1) / 2 - 1; i >= 0; --i) {
     // Radicand bits 2i+1 and 2i: bit j is bit j-e of u (zero below e).
@@ -91,7 +91,7 @@ constexpr std::uint32_t rsqrt_seed(std::uint32_t t) {        // 2^30 <= t < 2^32
 // Radicands below 2^16 take the digit-by-digit root.
 constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   if (u < (u64{1} << 16)) return isqrt_shifted(u, 0, limit);
-  int e = 64 - std::countl_zero(u) - 32;  // t = u·2^-e in [2^30, 2^32) for an even e
+  int e = bit_width(u) - 32;  // t = u·2^-e in [2^30, 2^32) for an even e
   e += e & 1;
   const u64 t = e >= 0 ? u >> e : u << -e;
   u64 r = (t * rsqrt_seed(static_cast<std::uint32_t>(t))) >> 31;  // √t = 2^16·T·(1/√T), < 2^17

@@ -3,10 +3,10 @@
 // and the light or halfway direction over a cell by the caps of their values at its vertices.
 #include "firmware/kb/kb_adaptive.hpp"
 #include "fixedpoint/divide.hpp"
+#include "fixedpoint/q.hpp"
 #include "fixedpoint/sqrt.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <limits>
 
 namespace tp::fw::kb {
@@ -33,8 +33,7 @@ bool light_near_cell(const LightState& l, const std::int64_t at[3][3], std::int6
       edge[v][k] = at[(v + 1) % 3][k] - at[v][k];
       largest = std::max({largest, abs64(to_light[v][k]), abs64(edge[v][k])});
     }
-  const int cut =
-      std::max(0, static_cast<int>(std::bit_width(static_cast<std::uint64_t>(largest))) - 26);
+  const int cut = std::max(0, fx::bit_width(static_cast<std::uint64_t>(largest)) - 26);
   const auto length2 = [cut](const std::int64_t w[3]) {
     const std::int64_t a = w[0] >> cut, b = w[1] >> cut, c = w[2] >> cut;
     return a * a + b * b + c * c;  // < 3·2^52

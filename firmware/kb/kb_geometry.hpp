@@ -25,7 +25,6 @@
 //    a triangle): every great circle through both ends is valid; a fixed perpendicular picks one.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "fixedpoint/arith.hpp"
@@ -129,7 +128,7 @@ constexpr ExactPole exact_pole(const Unit& a, const Unit& b) {
     return v < 0 ? std::uint64_t{0} - static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v);
   };
   const std::uint64_t big = mag(e.p[0]) | mag(e.p[1]) | mag(e.p[2]);
-  if (big > (std::uint64_t{kNegligibleRaw} << 31)) e.width = static_cast<int>(std::bit_width(big));
+  if (big > (std::uint64_t{kNegligibleRaw} << 31)) e.width = fx::bit_width(big);
   return e;
 }
 // The pole scaled by 2^-(width − 30): largest component in [2^29, 2^30) raw (shift >= 5).

@@ -54,8 +54,10 @@ std::int64_t curvature_bound(const LocalQuadratic& q) {
 
 // Whether a quadratic stays inside [0, 255.5) levels over its cell — then the pixel loop needs
 // no clamp: it lies within (|c_uu| + |c_vv| + |c_uv|) / 4 of the plane through its vertex values
-// (curvature_bound), plus a level of margin for the stepping's rounding.
+// (curvature_bound), plus a level of margin for the stepping's rounding. Size builds have one
+// pixel loop, which clamps (fill_quadratic), and leave the test out.
 bool inside_levels(const LocalQuadratic& q) {
+  if constexpr (kSizeBuild) return false;
   const std::int64_t a = q.c0, b = q.c0 + q.cu + q.cuu, c = q.c0 + q.cv + q.cvv;  // q at A, B, C
   const std::int64_t lo = a < b ? (a < c ? a : c) : (b < c ? b : c);
   const std::int64_t hi = a > b ? (a > c ? a : c) : (b > c ? b : c);

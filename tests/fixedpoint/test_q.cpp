@@ -106,6 +106,13 @@ TEST(Q, RawVocabulary) {
   EXPECT_EQ(fx::clamp(-3, 0, 10), 0);
   EXPECT_EQ(fx::clamp(11, 0, 10), 10);
   EXPECT_EQ(fx::clamp(4, 0, 10), 4);
+  // Every width from 0 to 64 at both ends of its range.
+  EXPECT_EQ(fx::bit_width(0), 0);
+  for (int w = 1; w <= 64; ++w) {
+    const std::uint64_t low = std::uint64_t{1} << (w - 1);
+    EXPECT_EQ(fx::bit_width(low), w);
+    EXPECT_EQ(fx::bit_width(low | (low - 1)), w);
+  }
   // 3·2^61 · 3 / 2^62 = 4.5 -> 5, and its negative -> -5; beyond 64 bits in between.
   EXPECT_EQ(fx::mul_shift_right(std::int64_t{3} << 61, 3, 62), 5);
   EXPECT_EQ(fx::mul_shift_right(-(std::int64_t{3} << 61), 3, 62), -5);
