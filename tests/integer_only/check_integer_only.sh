@@ -6,22 +6,34 @@
 #           object references a soft-float helper (__aeabi_f*, __aeabi_d*, __addsf3, ...).
 #   tokens: fail on the words float/double/long double or <cmath> outside comments, which
 #           also covers templates that no TU instantiates.
-# Usage: check_integer_only.sh MODE SOURCE_DIR GENERATED_DIR [extra.cpp ...]
+# Usage: check_integer_only.sh MODE SOURCE_DIR GENERATED_DIR [--only] [extra.cpp ...]
 # Extra files are checked as if they were firmware sources (the tests use this to show that
-# the check fails when a float is introduced).
+# the check fails when a float is introduced); with --only, they alone: the same test per unit,
+# without compiling the firmware a second time (the rejects_float tests).
 set -euo pipefail
 mode=$1 src=$2 gen=$3
 shift 3
+only=false
+if [ "${1:-}" = --only ]; then
+  only=true
+  shift
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 headers=$(cd "$src" && find fixedpoint firmware -name '*.hpp' | sort)
 sources=$(cd "$src" && find firmware -name '*.cpp' | sort)
-all_headers_tu="$work/all_headers.cpp"
-for h in $headers; do echo "#include \"$h\""; done > "$all_headers_tu"
-units=("$all_headers_tu")
-for s in $sources; do units+=("$src/$s"); done
+units=()
+if ! $only; then
+  all_headers_tu="$work/all_headers.cpp"
+  for h in $headers; do echo "#include \"$h\""; done > "$all_headers_tu"
+  units+=("$all_headers_tu")
+  for s in $sources; do units+=("$src/$s"); done
+else
+  headers="" sources=""
+fi
 for e in "$@"; do units+=("$e"); done
+[ ${#units[@]} -gt 0 ] || { echo "check_integer_only.sh: nothing to check"; exit 2; }
 
 common=(-std=c++20 -O2 -fno-exceptions -fno-rtti -I"$src" -I"$gen" -Wall -Werror)
 status=0
