@@ -574,10 +574,17 @@ Error Device::set_material(const MaterialCmd& cmd) {
 }
 
 Error Device::set_light(const LightCmd& cmd) {
-  if (cmd.index >= kMaxLights) return fail(Error::kTooManyLights);
+  if (cmd.index >= kProtocolLights) return fail(Error::kTooManyLights);
   if (cmd.type != LightType::kOff && cmd.type != LightType::kDirectional &&
       cmd.type != LightType::kPoint)
     return fail(Error::kBadArgument);
+  // A slot past the build's lights (TP_MAX_LIGHTS) is off and stays off: a stream recorded for
+  // 16 slots runs unchanged where its lit ones fit.
+  if (cmd.index >= kMaxLights) {
+    if (cmd.type != LightType::kOff) return fail(Error::kTooManyLights);
+    ++state_.shading.revision;  // as for any set_light: the same revisions as a full build
+    return ok();
+  }
   LightState l;
   l.type = cmd.type;
   if (cmd.type != LightType::kOff) {

@@ -26,7 +26,7 @@ enum class Error : std::uint32_t {
   kIndexOutOfRange = 6,   // an index >= vertex count, a range outside a buffer
   kNotUnit = 7,           // a normal / direction whose squared length is not 1 within tolerance
   kOutOfRange = 8,        // a matrix entry, coordinate or transformed value not representable
-  kTooManyLights = 9,     // light index >= kMaxLights
+  kTooManyLights = 9,     // light index >= 16, or a lit one >= kMaxLights (TP_MAX_LIGHTS)
   kUnknownMethod = 10,    // method id not implemented (reserved ids included) or not linked
   kNoViewport = 11,       // draw/clear before set_viewport
 };
@@ -68,7 +68,17 @@ enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 
 // Device limits. The bound arguments are in raster.hpp (coordinates) and device.cpp (inputs).
 inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
-inline constexpr std::uint32_t kMaxLights = 16;
+// The command stream has 16 light slots (set_light's index, 0 .. 15). A build shades up to
+// TP_MAX_LIGHTS of them (1 .. 16, default 16): a port for a part with little RAM sets fewer, and
+// every per-light array of the methods' state shrinks with it (kb's from 83,680 bytes to 12,112
+// at 2 lights on x86-64; docs/TARGET.md, "A small part"). The slots past it are always off:
+// set_light accepts them off (a no-op) and refuses them lit (kTooManyLights).
+inline constexpr std::uint32_t kProtocolLights = 16;
+#ifndef TP_MAX_LIGHTS
+#define TP_MAX_LIGHTS 16
+#endif
+inline constexpr std::uint32_t kMaxLights = TP_MAX_LIGHTS;
+static_assert(kMaxLights >= 1 && kMaxLights <= kProtocolLights, "TP_MAX_LIGHTS: 1 .. 16");
 inline constexpr std::uint32_t kMaxBudgetLevels = 16;  // largest error budget (set_budget)
 // Blinn-Phong n: every method evaluates any exponent up to the (a, b) fits' range
 // (cosn::kMaxN, checked in firmware/cosn.hpp); the power by repeated squaring takes 14 steps.

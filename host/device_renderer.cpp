@@ -240,7 +240,7 @@ std::vector<std::uint32_t> DeviceRenderer::setup_commands(const Scene& scene,
   w.set_projection(p.projection);
   w.set_eye(p.eye);
   w.set_material(p.material);
-  for (std::uint32_t i = 0; i < fw::kMaxLights; ++i) {
+  for (std::uint32_t i = 0; i < fw::kProtocolLights; ++i) {  // every slot: unused ones off
     fw::LightCmd l = i < p.lights.size() ? p.lights[i] : fw::LightCmd{};
     l.index = i;
     w.set_light(l);

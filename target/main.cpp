@@ -137,6 +137,41 @@ tp::fw::Error execute_timed(tp::fw::Device& device, const EmbeddedStream& s) {
 }
 #endif
 
+#ifdef TP_MEMORY_REPORT
+// The block this build needs per linked method for a 160x120 RGB565 frame without a depth buffer,
+// as "ID=BYTES+Vv+Ii": BYTES without a mesh, V more per vertex and I per index of the buffers'
+// capacity (Method ids, firmware/types.hpp). A port's own figures: the method states are sized by
+// its build's TP_MAX_LIGHTS (docs/TARGET.md, "A small part"; tests/target checks kb's).
+void print_memory_report() {
+  using namespace tp::target;
+  using tp::fw::Device;
+  tp::fw::ViewportCmd vp;
+  vp.width = 160;
+  vp.height = 120;
+  vp.format = tp::fw::PixelFormat::kRgb565;
+  vp.depth_buffer = false;
+  constexpr std::uint32_t kMany = 64;  // a multiple of the 8-byte alignment of the buffers
+  write("memory_required 160x120 rgb565 no-depth:");
+  for (std::uint32_t id = 0; id < 32; ++id) {
+    const auto m = static_cast<tp::fw::Method>(id);
+    if (Device::method_bytes(m) == 0) continue;  // not linked
+    const std::size_t none = Device::memory_required(vp, {}, m);
+    const std::size_t vertices = Device::memory_required(vp, {kMany, 0}, m) - none;
+    const std::size_t indices = Device::memory_required(vp, {0, kMany}, m) - none;
+    write(" ");
+    write_dec(id);
+    write("=");
+    write_dec(static_cast<std::uint32_t>(none));
+    write("+");
+    write_dec(static_cast<std::uint32_t>(vertices / kMany));
+    write("v+");
+    write_dec(static_cast<std::uint32_t>(indices / kMany));
+    write("i");
+  }
+  write("\n");
+}
+#endif
+
 bool run(const EmbeddedStream& s) {
   using namespace tp::target;
   auto* device = new (device_storage) tp::fw::Device(std::span<std::byte>(block, sizeof block));
@@ -179,6 +214,9 @@ int main() {
 #ifdef TP_COST
   timer_start();
   print_calibration();
+#endif
+#ifdef TP_MEMORY_REPORT
+  print_memory_report();
 #endif
   paint_stack();
   bool ok = true;
