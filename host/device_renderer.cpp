@@ -163,9 +163,12 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
   ConversionReport report;
   if (scene.width <= 0 || scene.height <= 0)
     reject(scene, "/resolution", "width and height must be positive");
-  // Without a depth buffer the frame's coverage (read_frame) comes from the write counts.
+  // Without a depth buffer the frame's coverage (read_frame) comes from the write counts, except
+  // in a small part's frame, which only `record` writes.
+  const bool part = scene.small_part_frame;
   p.viewport = {static_cast<std::uint32_t>(scene.width), static_cast<std::uint32_t>(scene.height),
-                fw::PixelFormat::kRgb888, /*write_count=*/!scene.depth_buffer, scene.depth_buffer};
+                part ? fw::PixelFormat::kRgb565 : fw::PixelFormat::kRgb888,
+                /*write_count=*/!scene.depth_buffer && !part, scene.depth_buffer};
   p.projection = to_device_matrix(projection_matrix(scene.camera, scene.width, scene.height),
                                   "projection", report);
   p.eye = eye_at_infinity(scene.camera) ? fw::EyeMode::kInfinite : fw::EyeMode::kFinite;

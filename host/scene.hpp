@@ -110,6 +110,10 @@ struct Scene {
   // false: the device lays out no depth buffer (ViewportCmd::depth_buffer; the CLI's
   // --no-depth-buffer): enough for a closed convex mesh with back faces culled.
   bool depth_buffer = true;
+  // true: the frame a part with little RAM lays out (`tinyphong record --small-part`; docs/
+  // TARGET.md, "A small part"): RGB565, and no write counts even without a depth buffer (the
+  // host's comparisons read coverage from them, so only record sets it).
+  bool small_part_frame = false;
 };
 
 // Light in eye space, as the reference and the device use it.

@@ -45,6 +45,7 @@ struct SceneOptions {
   double rotate_deg = 0;
   bool specular_only = false;
   bool no_depth_buffer = false;
+  bool small_part = false;  // record only
 };
 
 // --budget, for the commands that run the device (render, record).
@@ -78,7 +79,8 @@ Scene load(const SceneOptions& o) {
   if (!o.method.empty()) s.method = o.method;
   if (o.budget != 0) s.budget = o.budget;
   if (o.specular_only) keep_specular_only(s);
-  if (o.no_depth_buffer) s.depth_buffer = false;
+  if (o.no_depth_buffer || o.small_part) s.depth_buffer = false;
+  if (o.small_part) s.small_part_frame = true;
   if (!o.size.empty()) {
     int w = 0, h = 0;
     char x = 0;
@@ -487,6 +489,9 @@ int main(int argc, char** argv) {
   record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
   add_budget_option(record, rec.options);
   add_depth_buffer_option(record, rec.options);
+  record->add_flag("--small-part", rec.options.small_part,
+                   "the frame a part with little RAM draws: RGB565, no depth buffer, no write "
+                   "counts (docs/TARGET.md, \"A small part\")");
   record->add_option("-o,--output", rec.out, ".tpcmd file to write (one scene)");
   record->add_option("--dir", rec.dir, "write DIR/<scene>.tpcmd for each scene")
       ->check(CLI::ExistingDirectory);

@@ -39,7 +39,7 @@ def sizes(map_path):
             continue
         if "/firmware/" in obj:
             origin = "firmware"
-        elif "port_" in obj or "main_" in obj or "cost_" in obj:
+        elif "port_" in obj or "main_" in obj or "cost_" in obj or "part_" in obj:
             origin = "port (startup, semihosting, main)"
         elif "streams" in obj:
             origin = "stream table"

@@ -99,6 +99,36 @@ TEST(Replay, WithoutADepthBuffer) {
     }
 }
 
+// A small part's frame (`record --small-part`; docs/TARGET.md, "A small part"): the stream's
+// set_viewport asks for RGB565 with no depth buffer and no write counts, and on a convex scene
+// each pixel is the RGB888 frame's truncated to 5-6-5 bits (widened back by bit replication, as
+// replay shows it). (replay itself sizes its block for RGB888, the larger: memory_for_stream.)
+TEST(Replay, ASmallPartsFrame) {
+  const auto widened = [](std::uint8_t v, int bits) {
+    const unsigned q = v >> (8 - bits);
+    return static_cast<std::uint8_t>((q << (8 - bits)) | (q >> (2 * bits - 8)));
+  };
+  for (const char* name : {"sphere-40-l2", "dodecahedron-30"}) {
+    Scene full = scene_at(name, "kb", 160, 120), part = full;
+    part.depth_buffer = false;
+    part.small_part_frame = true;
+    DeviceRenderer a(160, 120), b(160, 120);
+    a.set_scene(full);
+    b.set_scene(part);
+    const std::vector<std::uint32_t> words = b.record(0.0);
+    ASSERT_GE(words.size(), 5u);
+    EXPECT_EQ(words[0], fw::command_header(fw::Opcode::kSetViewport, 4)) << name;
+    const std::vector<std::uint32_t> viewport(words.begin() + 1, words.begin() + 5);
+    EXPECT_EQ(viewport, (std::vector<std::uint32_t>{160, 120, 1, 2})) << name;  // RGB565; bit 1
+    const std::vector<std::uint8_t> rgb = a.render(0.0).rgb, small = replay(words).frame.rgb;
+    ASSERT_EQ(small.size(), rgb.size()) << name;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < rgb.size(); ++i)
+      differ += small[i] != widened(rgb[i], i % 3 == 1 ? 6 : 5) ? 1 : 0;
+    EXPECT_EQ(differ, 0u) << name;
+  }
+}
+
 // A rotated frame (the server's animation) records the rotated model-view.
 TEST(Replay, RotatedFrame) {
   const Scene scene = scene_at("teapot", "kb", 160, 120);
