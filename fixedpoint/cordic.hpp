@@ -120,16 +120,18 @@ constexpr bool atan_tail_is_a_shift() {
 }
 static_assert(atan_tail_is_a_shift(), "atan(2^-i) rounds to 2^-i in Q60 from kAtanTabled on");
 
-// The table's entry below kAtanTabled, the shift from there on.
-constexpr wide_t atan_q60(int i) {
+// The table's entry below kAtanTabled, the shift from there on. Inline also in size builds: a
+// call per CORDIC step cost more time than the copy in the size build's one step loop costs code.
+TP_FX_INLINE constexpr wide_t atan_q60(int i) {
   return i < kAtanTabled ? kAtanHead[static_cast<std::size_t>(i)] : wide_t{1} << (60 - i);
 }
 
 // Size builds keep one out-of-line loop for the four kinds of steps below (vectoring or rotation,
 // rounded or floor shifts), chosen at run time: the same steps, 430 bytes less on a Cortex-M3.
 #ifdef __OPTIMIZE_SIZE__
-TP_FX_OUTLINE constexpr void cordic_steps(wide_t& x, wide_t& y, wide_t& z, int n, bool rounded,
-                                          bool vectoring) {
+TP_FX_OUTLINE constexpr void cordic_steps(wide_t& x_io, wide_t& y_io, wide_t& z_io, int n,
+                                          bool rounded, bool vectoring) {
+  wide_t x = x_io, y = y_io, z = z_io;  // in registers, not through the references, per step
   for (int i = 0; i < n; ++i) {
     const wide_t xs = rounded ? round_shift_right(x, i) : x >> i;
     const wide_t ys = rounded ? round_shift_right(y, i) : y >> i;
@@ -144,6 +146,9 @@ TP_FX_OUTLINE constexpr void cordic_steps(wide_t& x, wide_t& y, wide_t& z, int n
       z -= a;
     }
   }
+  x_io = x;
+  y_io = y;
+  z_io = z;
 }
 #endif
 
@@ -216,6 +221,64 @@ constexpr Vectored cordic_vectoring(wide_t y, wide_t x) {
 inline constexpr int kFastIterations = tables::cordic_fast_iterations;
 static_assert(kFastIterations == 8, "the residual bounds below assume 8 steps");
 
+// sin_cos_fast's rotation steps: rotation_steps<false>(x, y, z, kFastIterations). Size builds
+// give them a loop of their own beside the shared cordic_steps: kb-exact turns by sin_cos_fast
+// twice per pixel and term, and with the bound fixed the loop shifts by i < 8 word by word and
+// reads the angles without a branch (docs/TARGET.md, "Footprint").
+#ifdef __OPTIMIZE_SIZE__
+// v >> i for 0 <= i < 32, word by word: GCC's 64-bit shift also covers i >= 32, in twice the
+// instructions on a 32-bit core. (hi << 1) << (31 − i) is hi << (32 − i) without a shift by 32
+// at i = 0.
+TP_FX_INLINE constexpr wide_t shift_right_below_32(wide_t v, int i) {
+  const auto lo = static_cast<std::uint32_t>(v);
+  const auto hi = static_cast<std::int32_t>(v >> 32);
+  const std::uint32_t low = (lo >> i) | ((static_cast<std::uint32_t>(hi) << 1) << (31 - i));
+  return static_cast<wide_t>((static_cast<u64>(static_cast<std::uint32_t>(hi >> i)) << 32) | low);
+}
+TP_FX_OUTLINE constexpr void fast_rotation_steps(wide_t& x_io, wide_t& y_io, wide_t& z_io) {
+  wide_t x = x_io, y = y_io, z = z_io;
+  for (int i = 0; i < kFastIterations; ++i) {
+    const wide_t xs = shift_right_below_32(x, i), ys = shift_right_below_32(y, i);
+    const wide_t a = kAtanHead[static_cast<std::size_t>(i)];
+    if (z >= 0) {  // rotation_steps' turn, repeated: sharing it moves the -O2 and -Os code
+      x -= ys;
+      y += xs;
+      z -= a;
+    } else {
+      x += ys;
+      y -= xs;
+      z += a;
+    }
+  }
+  x_io = x;
+  y_io = y;
+  z_io = z;
+}
+#else
+constexpr void fast_rotation_steps(wide_t& x, wide_t& y, wide_t& z) {
+  rotation_steps<false>(x, y, z, kFastIterations);
+}
+#endif
+static_assert(kFastIterations <= kAtanTabled);
+
+// (u · v) / 6 truncated, for 0 <= u < 2^16 and |v| < 2^23 (sin_cos_fast's z³ term). u = 6q + r
+// splits it into q·v + (r·v) / 6: q·v is whole and of the sign of (r·v) / 6, so the truncations
+// agree, and r·v fits 32 bits. On a core that divides by halves that is two 32-bit divisions
+// instead of a long division of the 39-bit product (docs/TARGET.md, "Division on the core"); the
+// tests check it against u · v / 6 on x86 too.
+constexpr wide_t product_over_6_by_halves(wide_t u, wide_t v) {
+  const auto uw = static_cast<std::uint32_t>(u);
+  const std::uint32_t q = uw / 6u, r = uw - 6u * q;
+  const std::int32_t rv = static_cast<std::int32_t>(r) * static_cast<std::int32_t>(v);
+  return static_cast<wide_t>(q) * v + rv / 6;
+}
+constexpr wide_t product_over_6(wide_t u, wide_t v) {
+  if constexpr (kDivideByHalves)
+    return product_over_6_by_halves(u, v);
+  else
+    return u * v / 6;
+}
+
 // Vectoring mode, 8 steps, then the residual: atan2(y, x) with x > 0, |y| / x < tan(2^-6).
 // Returns the angle in Q60.
 constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
@@ -244,29 +307,33 @@ constexpr wide_t cordic_vectoring_fast(wide_t y, wide_t x) {
 // cos z = 1 − e, e = z²/2 − z⁴/24 (z⁶/720 < 2^-51), sin z = z − z³/6 (z⁵/120 < 2^-41).
 constexpr SinCos sin_cos_fast(angle_t theta) {
   using detail::wide_t;
+  // Its roundings inline also in size builds: kb-exact calls it twice per pixel and term, and
+  // out of line they were a quarter of that method's time on the Cortex-M3 at -Os.
+  constexpr auto rounded = [](wide_t v, int shift) {
+    return detail::round_shift_right_inline(v, shift);
+  };
   wide_t z = wide_t{theta.raw()} * (wide_t{1} << 31);
   const bool flip = detail::reduce_to_half_pi(z);
   wide_t x = tables::cordic_fast_gain_inv_q60, y = 0;
-  detail::rotation_steps<false>(x, y, z, detail::kFastIterations);
+  detail::fast_rotation_steps(x, y, z);
   // |z| < 2^-7 (Q60: < 2^53); |x|, |y| <= 1 + 2^-50 (Q60).
-  const wide_t z30 = round_shift_right(z, 30);  // |.| < 2^23
-  const wide_t z2_60 = z30 * z30;               // < 2^46
-  const wide_t z2_30 = z2_60 >> 30;             // < 2^16
+  const wide_t z30 = rounded(z, 30);  // |.| < 2^23
+  const wide_t z2_60 = z30 * z30;     // < 2^46
+  const wide_t z2_30 = z2_60 >> 30;   // < 2^16
   // e = 1 − cos z, < 2^45; z2_30² < 2^32 takes a 32-bit division (one Cortex-M3 instruction).
   const wide_t e60 = z2_60 / 2 - static_cast<std::uint32_t>(z2_30 * z2_30) / 24u;
-  const wide_t s60 = z - idiv(z2_30 * z30, 6);  // sin z, |.| < 2^53
+  const wide_t s60 = z - detail::product_over_6(z2_30, z30);  // sin z, |.| < 2^53
   // x·e: Q32 × Q45 -> Q77 (< 2^62); y·s: Q31 × Q38 -> Q69 (< 2^62).
-  const wide_t e45 = e60 >> 15, s38 = round_shift_right(s60, 22);
-  const wide_t x32 = round_shift_right(x, 28), y32 = round_shift_right(y, 28);
-  const wide_t x31 = round_shift_right(x, 29), y31 = round_shift_right(y, 29);
-  wide_t xr = x - round_shift_right(x32 * e45, 17) - round_shift_right(y31 * s38, 9);
-  wide_t yr = y - round_shift_right(y32 * e45, 17) + round_shift_right(x31 * s38, 9);
+  const wide_t e45 = e60 >> 15, s38 = rounded(s60, 22);
+  const wide_t x32 = rounded(x, 28), y32 = rounded(y, 28);
+  const wide_t x31 = rounded(x, 29), y31 = rounded(y, 29);
+  wide_t xr = x - rounded(x32 * e45, 17) - rounded(y31 * s38, 9);
+  wide_t yr = y - rounded(y32 * e45, 17) + rounded(x31 * s38, 9);
   if (flip) {
     xr = -xr;
     yr = -yr;
   }
-  return SinCos{q1_30::from_raw_sat(round_shift_right(yr, 30)),
-                q1_30::from_raw_sat(round_shift_right(xr, 30))};
+  return SinCos{q1_30::from_raw_sat(rounded(yr, 30)), q1_30::from_raw_sat(rounded(xr, 30))};
 }
 
 template <QType T>

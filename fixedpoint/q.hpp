@@ -25,10 +25,14 @@ namespace tp::fx {
 // clamp below: on a 32-bit core each is a dozen instructions of 64-bit arithmetic, which GCC at -Os
 // otherwise copies into about a hundred callers (2,084 bytes of the Cortex-M3 -Os image; docs/
 // TARGET.md, "Footprint"). Speed builds inline them; the results are the same.
+// TP_FX_INLINE marks the few helpers a size build copies into a hot loop all the same, where a
+// call costs more time than the copy costs code (docs/TARGET.md, "Footprint").
 #ifdef __OPTIMIZE_SIZE__
 #define TP_FX_OUTLINE [[gnu::noinline]]
+#define TP_FX_INLINE [[gnu::always_inline]]
 #else
 #define TP_FX_OUTLINE
+#define TP_FX_INLINE
 #endif
 
 // Raw-integer vocabulary, for code that works on raw values between Q types (the rounding and
@@ -39,12 +43,19 @@ namespace tp::fx {
 //   bit_width(m)             the bits of the magnitude m, std::bit_width's as an int (the
 //                            shift that normalises m; 0 for 0).
 
+namespace detail {
+// round_shift_right's body, inlined wherever it is called, also in size builds (TP_FX_INLINE).
 // For v < 0 the tie away from zero, −((−v + half) >> shift), is the floor (v + half − 1) >>
 // shift: v >> 63 supplies the −1 without a branch on the sign.
-TP_FX_OUTLINE constexpr std::int64_t round_shift_right(std::int64_t v, int shift) {
+TP_FX_INLINE constexpr std::int64_t round_shift_right_inline(std::int64_t v, int shift) {
   if (shift <= 0) return v;
   const std::int64_t half = std::int64_t{1} << (shift - 1);
   return (v + half + (v >> 63)) >> shift;
+}
+}  // namespace detail
+
+TP_FX_OUTLINE constexpr std::int64_t round_shift_right(std::int64_t v, int shift) {
+  return detail::round_shift_right_inline(v, shift);
 }
 
 TP_FX_OUTLINE constexpr std::int64_t clamp(std::int64_t v, std::int64_t lo, std::int64_t hi) {

@@ -133,3 +133,54 @@ TEST(SqrtPlain, IdenticalToTheGeneralRoot) {
     }
   }
 }
+
+// sin_cos_fast's 8 rotation steps: the size build's own loop (word-by-word shifts) against the
+// shared step loop, bit for bit. In the speed build both are rotation_steps; the size build's
+// copy of this test (fixedpoint_size_build_test) is the one that compares two loops.
+TEST(CordicFast, TheFastRotationStepsAreTheSharedSteps) {
+  namespace d = fx::detail;
+  std::uint64_t state = 24680;
+  for (int i = 0; i < 100000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    // sin_cos_fast's inputs: z reduced to [−π/2, π/2] in Q60, x the gain's inverse, y zero; and
+    // wider x and y of either sign, for the shifts' carries between the words.
+    d::wide_t z = static_cast<d::wide_t>(state) >> 2;
+    d::reduce_to_half_pi(z);
+    d::wide_t x = tp::tables::cordic_fast_gain_inv_q60, y = 0;
+    if (i % 2 == 1) {
+      x = static_cast<d::wide_t>(state * 0x9e3779b97f4a7c15ULL) >> 4;  // |.| < 2^60: the
+      y = static_cast<d::wide_t>(state * 0xc2b2ae3d27d4eb4fULL) >> 4;  // gain 1.65 fits
+    }
+    d::wide_t x1 = x, y1 = y, z1 = z;
+    d::fast_rotation_steps(x1, y1, z1);
+    d::rotation_steps<false>(x, y, z, d::kFastIterations);
+    ASSERT_EQ(x1, x) << i;
+    ASSERT_EQ(y1, y) << i;
+    ASSERT_EQ(z1, z) << i;
+  }
+}
+
+// sin_cos_fast's z³/6 by two 32-bit divisions equals the 64-bit division over its whole domain's
+// edges and a million random pairs (0 <= u < 2^16, |v| <= 2^23).
+TEST(CordicFast, TheProductOverSixIsTheDivision) {
+  namespace d = fx::detail;
+  const auto check = [](d::wide_t u, d::wide_t v) {
+    ASSERT_EQ(d::product_over_6_by_halves(u, v), u * v / 6) << u << " * " << v;
+    ASSERT_EQ(d::product_over_6(u, v), u * v / 6) << u << " * " << v;
+  };
+  const d::wide_t vmax = (d::wide_t{1} << 23) - 1;
+  for (d::wide_t u = 0; u < 64; ++u)
+    for (d::wide_t v :
+         {-vmax, -vmax + 1, d::wide_t{-7}, d::wide_t{-6}, d::wide_t{-5}, d::wide_t{-1},
+          d::wide_t{0}, d::wide_t{1}, d::wide_t{5}, d::wide_t{6}, d::wide_t{7}, vmax - 1, vmax}) {
+      check(u, v);
+      check((d::wide_t{1} << 16) - 1 - u, v);
+    }
+  std::uint64_t state = 13579;
+  for (int i = 0; i < 1000000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const auto u = static_cast<d::wide_t>(state >> 48);                             // [0, 2^16)
+    const auto v = static_cast<d::wide_t>(static_cast<std::int64_t>(state) >> 40);  // [-2^23, 2^23)
+    check(u, v);
+  }
+}
