@@ -6,10 +6,27 @@
 #include <fstream>
 #include <iterator>
 
-#include "host/device_renderer.hpp"
 #include "target/fnv1a.hpp"
 
 namespace tp::host {
+
+std::string_view error_name(fw::Error e) {
+  switch (e) {
+    case fw::Error::kOk: return "ok";
+    case fw::Error::kBadOpcode: return "bad opcode";
+    case fw::Error::kBadLength: return "bad command length";
+    case fw::Error::kBadArgument: return "bad argument";
+    case fw::Error::kOutOfMemory: return "out of device memory";
+    case fw::Error::kViewportTooLarge: return "viewport too large";
+    case fw::Error::kIndexOutOfRange: return "index out of range";
+    case fw::Error::kNotUnit: return "a normal or direction is not unit length";
+    case fw::Error::kOutOfRange: return "a value is outside the device's range";
+    case fw::Error::kTooManyLights: return "too many lights";
+    case fw::Error::kUnknownMethod: return "shading method not available";
+    case fw::Error::kNoViewport: return "no viewport set";
+  }
+  return "unknown error";
+}
 
 namespace {
 

@@ -48,6 +48,9 @@ class CommandWriter {
 // "set_viewport", "upload_vertices", ...; "unknown opcode N" otherwise.
 std::string opcode_name(std::uint32_t opcode);
 
+// "ok", "bad opcode", ...: the device's error codes by name (for messages).
+std::string_view error_name(fw::Error e);
+
 // A command the device refused: where (word offset of its header), which, and why.
 class StreamError : public std::runtime_error {
  public:

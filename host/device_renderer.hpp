@@ -110,7 +110,4 @@ class DeviceRenderer {
 // depth buffer); render_ms is left 0.
 DeviceFrame read_frame(const fw::Device& device);
 
-// "kOk", "kBadOpcode", ...: the device's error codes by name (for messages).
-std::string_view error_name(fw::Error e);
-
 }  // namespace tp::host

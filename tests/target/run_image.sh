@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs a Cortex-M image under QEMU and compares every framebuffer hash it prints with the x86
-# device's hash of the same stream (`tinyphong replay --hash`, written to HASHES by the fixture
-# host_hashes.sh as "HASH  FILE" lines).
+# device's hash of the same stream (what `tinyphong replay --hash` prints, written to HASHES by
+# the fixture host_hashes.sh as "HASH  FILE" lines).
 #   run_image.sh QEMU MACHINE IMAGE HASHES TIMEOUT_S NAME=STREAM.tpcmd...
 # Each NAME must appear as "stream NAME HASH" in the image's output, in order. Prints
 # "hash mismatch: NAME ..." for each difference; exits 0 iff QEMU exited 0, printed "done",
