@@ -209,6 +209,24 @@ std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
   return fw::Device::memory_required(vp, cap);
 }
 
+namespace {
+std::size_t replay_block_bytes(std::span<const std::uint32_t> words, std::size_t max_memory) {
+  const std::size_t need = memory_for_stream(words);
+  if (need > max_memory)
+    throw std::runtime_error("the stream's viewport and buffer capacity need " +
+                             std::to_string(need) + " bytes of device memory, more than replay's " +
+                             "limit of " + std::to_string(max_memory));
+  return need;
+}
+}  // namespace
+
+StreamReplay::StreamReplay(std::span<const std::uint32_t> words, std::size_t max_memory)
+    : memory_(replay_block_bytes(words, max_memory)), device_(std::span<std::byte>(memory_)) {
+  run_stream(device_, words);
+  if (!device_.state().viewport_set)
+    throw std::runtime_error("the stream sets no viewport: no image");
+}
+
 std::vector<std::uint32_t> read_command_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw std::runtime_error(path + ": cannot open");

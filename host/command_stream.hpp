@@ -69,6 +69,25 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words);
 // device then reports them.
 std::size_t memory_for_stream(std::span<const std::uint32_t> words);
 
+// A stream run through a fresh device, in a memory block of the size the stream asks for
+// (memory_for_stream): what `tinyphong replay`, the replay tests and the target tests' host
+// hashes do. The constructor throws std::runtime_error if that block would exceed max_memory
+// (a dozen words can ask for 2^24 vertices) or the stream sets no viewport (no frame), and
+// StreamError at the first command the device refuses.
+class StreamReplay {
+ public:
+  // Well above what any frame of a scene file needs: a 4096 x 4096 viewport with the largest
+  // mesh a scene may hold takes well under it.
+  static constexpr std::size_t kMaxMemory = std::size_t{1} << 30;
+
+  explicit StreamReplay(std::span<const std::uint32_t> words, std::size_t max_memory = kMaxMemory);
+  const fw::Device& device() const { return device_; }
+
+ private:
+  std::vector<std::byte> memory_;
+  fw::Device device_;
+};
+
 // .tpcmd files. read_command_file throws std::runtime_error naming the file if it cannot be
 // read or is not a whole number of 32-bit words.
 std::vector<std::uint32_t> read_command_file(const std::string& path);

@@ -262,28 +262,14 @@ int run_record(const RecordCli& cli) {
 // "HASH  FILE" (as sha256sum does), so that a test hashes many streams in one run.
 int run_replay_one(const std::string& in, const std::string& out, bool print_hash) {
   const std::vector<std::uint32_t> words = read_command_file(in);
-  // A dozen words can ask for 2^24 vertices: refuse what no frame of a scene file needs (a
-  // 4096 x 4096 viewport with the largest mesh a scene may hold takes well under this).
-  constexpr std::size_t kMaxReplayMemory = std::size_t{1} << 30;
-  const std::size_t need = memory_for_stream(words);
-  if (need > kMaxReplayMemory) {
-    std::cerr << "tinyphong replay: " << in << ": the stream's viewport and buffer capacity need "
-              << need << " bytes of device memory, more than replay's limit of " << kMaxReplayMemory
-              << "\n";
-    return 1;
-  }
-  std::vector<std::byte> memory(need);
-  tp::fw::Device device{std::span<std::byte>(memory)};
+  std::optional<StreamReplay> replay;
   try {
-    run_stream(device, words);
-  } catch (const StreamError& e) {
+    replay.emplace(words);
+  } catch (const std::runtime_error& e) {  // a StreamError, the block's limit, no viewport
     std::cerr << "tinyphong replay: " << in << ": " << e.what() << "\n";
     return 1;
   }
-  if (!device.state().viewport_set) {
-    std::cerr << "tinyphong replay: " << in << ": the stream sets no viewport: no image\n";
-    return 1;
-  }
+  const tp::fw::Device& device = replay->device();
   if (print_hash)
     std::cout << hash_hex(framebuffer_hash(device.framebuffer())) << "  " << in << "\n";
   if (!out.empty()) {

@@ -34,10 +34,8 @@ struct Replayed {
 };
 
 Replayed replay(const std::vector<std::uint32_t>& words) {
-  std::vector<std::byte> memory(memory_for_stream(words));
-  fw::Device device{std::span<std::byte>(memory)};
-  run_stream(device, words);
-  return {read_frame(device), framebuffer_hash(device.framebuffer())};
+  const StreamReplay replay(words);
+  return {read_frame(replay.device()), framebuffer_hash(replay.device().framebuffer())};
 }
 
 // Renders and records the same frame, replays the record, compares everything.

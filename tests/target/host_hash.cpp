@@ -3,26 +3,17 @@
 // (host_hashes.sh). A tool of its own, linked with the firmware built -O2 in every build type and
 // without the image library, whose loading was most of a fixture's time (docs/TARGET.md, "The
 // Cortex-M images").
-#include <cstddef>
-#include <cstdint>
 #include <exception>
 #include <iostream>
-#include <span>
 #include <string>
-#include <vector>
 
-#include "firmware/device.hpp"
 #include "host/command_stream.hpp"
 
 namespace {
 
 std::string hash_of_stream(const std::string& path) {
-  const std::vector<std::uint32_t> words = tp::host::read_command_file(path);
-  std::vector<std::byte> memory(tp::host::memory_for_stream(words));
-  tp::fw::Device device{std::span<std::byte>(memory)};
-  tp::host::run_stream(device, words);
-  if (!device.state().viewport_set) throw std::runtime_error("the stream sets no viewport");
-  return tp::host::hash_hex(tp::host::framebuffer_hash(device.framebuffer()));
+  const tp::host::StreamReplay replay(tp::host::read_command_file(path));
+  return tp::host::hash_hex(tp::host::framebuffer_hash(replay.device().framebuffer()));
 }
 
 }  // namespace
