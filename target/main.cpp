@@ -23,6 +23,7 @@
 #include "firmware/device.hpp"
 #include "target/fnv1a.hpp"
 #include "target/semihost.hpp"
+#include "target/stack_mark.hpp"
 
 // 3.5 MiB: the largest stream at the scenes' own resolutions (640x480 RGB888 with depth, the
 // teapot's buffers, kb-adaptive's state: about 2.7 MB) with room to spare.
@@ -41,26 +42,7 @@ struct EmbeddedStream {
 extern "C" const EmbeddedStream tp_streams[];
 extern "C" const std::uint32_t tp_stream_count;
 
-extern "C" std::uint32_t __stack_limit[], __stack_top[];  // mps2.ld
-
 namespace {
-
-// The stack's high-water mark: the free stack is painted with a pattern before the streams run,
-// and afterwards the lowest word that no longer holds it bounds what every stream used (main's
-// frames and the semihosting writes included).
-constexpr std::uint32_t kStackPaint = 0x5eed5eedu;
-void paint_stack() {
-  // Everything more than 256 bytes below this frame is free.
-  const auto below = reinterpret_cast<std::uintptr_t>(__builtin_frame_address(0)) - 256;
-  for (volatile std::uint32_t* p = __stack_limit; reinterpret_cast<std::uintptr_t>(p) < below; ++p)
-    *p = kStackPaint;
-}
-std::uint32_t stack_used_bytes() {
-  const volatile std::uint32_t* p = __stack_limit;
-  while (p < __stack_top && *p == kStackPaint) ++p;
-  return static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(__stack_top) -
-                                    reinterpret_cast<std::uintptr_t>(p));
-}
 
 // The device's memory block, and the Device object itself (constructed anew per stream so
 // that each stream starts from a fresh device, as `tinyphong replay` does). Both are static:
