@@ -11,9 +11,9 @@ methods overlap and do not sum.
 Only device.cpp reads the mask: it is compiled once per image with the release build's own
 command for the m3-Os configuration, and linked with that build's other objects by its own
 link command (both from `ninja -t commands`), in a temporary folder; the build is not touched.
-Usage: python3 scripts/target-method-size.py [--build DIR] [--methods kb,kb-adaptive]
+Usage: python3 scripts/target-method-size.py [--build DIR] [--methods kb,kb-adaptive] [--keep DIR]
 (default build/release, built; --methods: one row, the base with those methods together)."""
-import argparse, os, re, shlex, subprocess, sys, tempfile
+import argparse, os, re, shlex, shutil, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
@@ -70,6 +70,8 @@ def main():
                         help="the build folder, already built (default build/release)")
     parser.add_argument("--methods", help="comma-separated: one row, the base with these "
                         "methods together (what a port that ships them links)")
+    parser.add_argument("--keep", metavar="DIR",
+                        help="copy the images linked (NAME.elf, NAME.map) into DIR")
     args = parser.parse_args()
     target_dir = os.path.join(ROOT, args.build, "target")
     image = "%s-kb.elf" % CONFIG
@@ -104,6 +106,10 @@ def main():
         ld = replaced(ld, map_flag[0], "-Wl,-Map=" + mapfile)
         subprocess.run(ld, cwd=target_dir, check=True)
         s = sizes(mapfile)
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+            for f in (elf, mapfile):
+                shutil.copy(f, args.keep)
         return s.get((".text", "firmware"), 0), s.get((".rodata", "firmware"), 0)
 
     def row(label, text, rodata, base_text):
