@@ -78,6 +78,24 @@ struct FramebufferView {
   PixelFormat format = PixelFormat::kRgb888;
 };
 
+// Row y of a framebuffer as RGB888, 3 * width bytes into `out`: RGB565 (little-endian 5:6:5)
+// widened by bit replication, as a display shows it. For the frames that leave the device: the
+// host's images and the replay image's PPM (target/replay.cpp).
+inline void row_as_rgb888(const FramebufferView& fb, std::uint32_t y, std::uint8_t* out) {
+  const std::uint8_t* row = fb.data + std::size_t{y} * fb.stride;
+  if (fb.format == PixelFormat::kRgb888) {
+    for (std::size_t i = 0; i < 3 * std::size_t{fb.width}; ++i) out[i] = row[i];
+    return;
+  }
+  for (std::uint32_t x = 0; x < fb.width; ++x) {
+    const unsigned v = unsigned{row[2 * x]} | (unsigned{row[2 * x + 1]} << 8);
+    const unsigned r = (v >> 11) & 31u, g = (v >> 5) & 63u, b = v & 31u;
+    out[3 * x] = static_cast<std::uint8_t>((r << 3) | (r >> 2));
+    out[3 * x + 1] = static_cast<std::uint8_t>((g << 2) | (g >> 4));
+    out[3 * x + 2] = static_cast<std::uint8_t>((b << 3) | (b >> 2));
+  }
+}
+
 // Command stream (execute): a sequence of commands, each a header word
 // (opcode | payload_words << 16) followed by its payload. Payload layouts (all words are
 // uint32; Q values are their raw two's-complement bits):

@@ -248,8 +248,7 @@ void write_command_file(const std::string& path, std::span<const std::uint32_t> 
 }
 
 std::uint64_t framebuffer_hash(const fw::FramebufferView& fb) {
-  const std::size_t bpp = fb.format == fw::PixelFormat::kRgb888 ? 3 : 2;
-  return target::framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width);
+  return target::framebuffer_fnv1a(fb);
 }
 
 std::string hash_hex(std::uint64_t h) {

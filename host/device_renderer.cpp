@@ -317,22 +317,8 @@ DeviceFrame read_frame(const fw::Device& device) {
   f.height = static_cast<int>(fb.height);
   const std::size_t pixels = std::size_t{fb.width} * fb.height;
   f.rgb.resize(pixels * 3);
-  for (std::uint32_t y = 0; y < fb.height; ++y) {
-    const std::uint8_t* row = fb.data + std::size_t{y} * fb.stride;
-    std::uint8_t* out = f.rgb.data() + std::size_t{y} * fb.width * 3;
-    if (fb.format == fw::PixelFormat::kRgb888) {
-      std::copy(row, row + std::size_t{fb.width} * 3, out);
-    } else {
-      // RGB565, little-endian: widen by bit replication, as a display would show it.
-      for (std::uint32_t x = 0; x < fb.width; ++x) {
-        const unsigned v = unsigned{row[2 * x]} | (unsigned{row[2 * x + 1]} << 8);
-        const unsigned r = (v >> 11) & 31u, g = (v >> 5) & 63u, b = v & 31u;
-        out[3 * x] = static_cast<std::uint8_t>((r << 3) | (r >> 2));
-        out[3 * x + 1] = static_cast<std::uint8_t>((g << 2) | (g >> 4));
-        out[3 * x + 2] = static_cast<std::uint8_t>((b << 3) | (b >> 2));
-      }
-    }
-  }
+  for (std::uint32_t y = 0; y < fb.height; ++y)
+    fw::row_as_rgb888(fb, y, f.rgb.data() + std::size_t{y} * fb.width * 3);
   // Coverage from the depth buffer: the depth test is on and clear sets every depth word to the
   // far value, which no write can store (a write needs a depth below the stored one), so a pixel
   // was written exactly when its depth word is below far. The write counts would say the same at

@@ -1,10 +1,13 @@
 // FNV-1a 64 over bytes: the framebuffer hash that the Cortex-M images print and that
-// `tinyphong replay --hash` prints for the same stream on the host. Header-only and free of
-// the standard library beyond <cstdint>, so that the bare-metal images can use it as it is.
+// `tinyphong replay --hash` prints for the same stream on the host. Header-only, and beyond the
+// device's own header free of the standard library but <cstdint>, so that the bare-metal images
+// can use it as it is.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+
+#include "firmware/device.hpp"
 
 namespace tp::target {
 
@@ -27,6 +30,12 @@ inline std::uint64_t framebuffer_fnv1a(const std::uint8_t* data, std::uint32_t h
   for (std::uint32_t y = 0; y < height; ++y)
     h = fnv1a(h, data + std::size_t{y} * stride, row_bytes);
   return h;
+}
+
+// The same for the device's framebuffer: 3 bytes per pixel in RGB888, 2 in RGB565.
+inline std::uint64_t framebuffer_fnv1a(const fw::FramebufferView& fb) {
+  const std::size_t bpp = fb.format == fw::PixelFormat::kRgb888 ? 3 : 2;
+  return framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width);
 }
 
 }  // namespace tp::target

@@ -113,57 +113,64 @@ std::size_t whole_commands(std::size_t count) {
   return at;
 }
 
-void report_error(const char* name, Error e, std::size_t word) {
+// The line main.cpp prints per stream (tests/target reads both), for a stream that `device` ran up
+// to word `word` with error `e`; whether it gave a frame (every command ran and it set a viewport;
+// otherwise the error is printed, 0 for a stream without a viewport).
+bool report_stream(const char* name, const Device& device, Error e, std::size_t word) {
   using namespace tp::target;
   write("stream ");
   write(name);
-  write(" error ");
-  write_dec(static_cast<std::uint32_t>(e));
-  write(" at word ");
-  write_dec(word);
+  const bool frame = e == Error::kOk && device.state().viewport_set;
+  if (frame) {
+    write(" ");
+    write_hex64(framebuffer_fnv1a(device.framebuffer()));
+  } else {
+    write(" error ");
+    write_dec(static_cast<std::uint32_t>(e));
+    write(" at word ");
+    write_dec(word);
+  }
   write("\n");
+  return frame;
 }
 
-// Feeds the file to the device chunk by chunk. Returns whether every command ran; reports the
-// first that did not, at its offset in the file.
-bool feed(Device& device, int file, const Arguments& args) {
-  using namespace tp::target;
+// Where feeding a file stopped: the device's error and the word of the file it stopped at (kOk
+// and the file's length in words if every command ran), or a file that ends inside a word.
+struct Fed {
+  Error error = Error::kOk;
+  std::size_t word = 0;
+  bool whole_words = true;
+};
+
+// Feeds the file to the device chunk by chunk, up to the first command that fails.
+Fed feed(Device& device, int file, const Arguments& args) {
   std::size_t bytes = 0;       // in words[], from its start
   std::size_t done_words = 0;  // of the file, executed before words[0]
   for (;;) {
-    const std::size_t got =
-        read_file(file, reinterpret_cast<std::byte*>(words) + bytes, 4 * args.chunk_words);
+    const std::size_t got = tp::target::read_file(file, reinterpret_cast<std::byte*>(words) + bytes,
+                                                  4 * args.chunk_words);
     bytes += got;
     const std::size_t whole = whole_commands(bytes / 4);
     if (whole > 0) {
       if (const Error e = device.execute(std::span<const std::uint32_t>(words, whole));
-          e != Error::kOk) {
-        report_error(args.stream, e, done_words + device.words_consumed());
-        return false;
-      }
+          e != Error::kOk)
+        return {e, done_words + device.words_consumed()};
       done_words += whole;
       bytes -= 4 * whole;
       std::memmove(words, words + whole, bytes);
     }
     if (got > 0) continue;
     // The end of the file.
-    if (bytes % 4 != 0) {
-      write("stream ");
-      write(args.stream);
-      write(": not a whole number of 32-bit words (a truncated file?)\n");
-      return false;
-    }
-    if (bytes == 0) return true;
+    if (bytes % 4 != 0) return {Error::kOk, done_words, false};
+    if (bytes == 0) return {Error::kOk, done_words};
     // A last command that the file cuts short: the device names the fault (its opcode or its
     // length), as it would in one call.
     const Error e = device.execute(std::span<const std::uint32_t>(words, bytes / 4));
-    report_error(args.stream, e, done_words + device.words_consumed());
-    return false;
+    return {e, done_words + device.words_consumed()};
   }
 }
 
-// The frame as a binary PPM: RGB888 as stored, RGB565 widened as the host widens it
-// (host/device_renderer.cpp, read_frame).
+// The frame as a binary PPM, its rows as the host's images take them (row_as_rgb888).
 bool write_ppm(const tp::fw::FramebufferView& fb, const char* path) {
   using namespace tp::target;
   const int file = open_file(path, true);
@@ -185,18 +192,7 @@ bool write_ppm(const tp::fw::FramebufferView& fb, const char* path) {
   append(255, '\n');
   bool ok = write_file(file, header, static_cast<std::size_t>(p - header));
   for (std::uint32_t y = 0; ok && y < fb.height; ++y) {
-    const std::uint8_t* row = fb.data + std::size_t{y} * fb.stride;
-    if (fb.format == tp::fw::PixelFormat::kRgb888) {
-      std::memcpy(ppm_row, row, 3 * std::size_t{fb.width});
-    } else {
-      for (std::uint32_t x = 0; x < fb.width; ++x) {
-        const unsigned v = unsigned{row[2 * x]} | (unsigned{row[2 * x + 1]} << 8);
-        const unsigned r = (v >> 11) & 31u, g = (v >> 5) & 63u, b = v & 31u;
-        ppm_row[3 * x] = static_cast<std::uint8_t>((r << 3) | (r >> 2));
-        ppm_row[3 * x + 1] = static_cast<std::uint8_t>((g << 2) | (g >> 4));
-        ppm_row[3 * x + 2] = static_cast<std::uint8_t>((b << 3) | (b >> 2));
-      }
-    }
+    tp::fw::row_as_rgb888(fb, y, ppm_row);
     ok = write_file(file, ppm_row, 3 * std::size_t{fb.width});
   }
   close_file(file);
@@ -213,25 +209,20 @@ bool run(const Arguments& args) {
     return false;
   }
   auto* device = new (device_storage) Device(std::span<std::byte>(block, sizeof block));
-  bool ok = feed(*device, file, args);
+  const Fed fed = feed(*device, file, args);
   close_file(file);
-  if (ok && !device->state().viewport_set) {
-    report_error(args.stream, Error::kOk, device->words_consumed());  // no frame: as main.cpp
-    ok = false;
-  }
-  if (ok) {
-    const tp::fw::FramebufferView fb = device->framebuffer();
-    const std::size_t bpp = fb.format == tp::fw::PixelFormat::kRgb888 ? 3 : 2;
+  bool ok = false;
+  if (!fed.whole_words) {
     write("stream ");
     write(args.stream);
-    write(" ");
-    write_hex64(framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width));
-    write("\n");
-    if (args.ppm != nullptr && !write_ppm(fb, args.ppm)) {
-      write(args.ppm);
-      write(": cannot write\n");
-      ok = false;
-    }
+    write(": not a whole number of 32-bit words (a truncated file?)\n");
+  } else {
+    ok = report_stream(args.stream, *device, fed.error, fed.word);
+  }
+  if (ok && args.ppm != nullptr && !write_ppm(device->framebuffer(), args.ppm)) {
+    write(args.ppm);
+    write(": cannot write\n");
+    ok = false;
   }
   device->~Device();
   return ok;
