@@ -2,16 +2,18 @@
 // (-O2) forces the per-pixel helpers inline (TP_PIXEL_INLINE), unrolls the small loops it is
 // given unrolled forms of, and has a pixel loop instance for every combination of pixel format,
 // depth test, write counts and depth saturation, so that no pixel branches on them. A size build
-// (-Os, which defines __OPTIMIZE_SIZE__) leaves the inlining to the compiler (the Cortex-M size
-// images ask it to inline less: TP_SIZE_FLAGS in target/CMakeLists.txt), takes the general
-// loops, and has one pixel loop per colour source that reads the draw's state per pixel
+// (TP_SIZE_BUILD, fixedpoint/build_goal.hpp: -Os by default) leaves the inlining to the compiler
+// (the Cortex-M size images ask it to inline less: TP_SIZE_FLAGS in target/CMakeLists.txt), takes
+// the general loops, and has one pixel loop per colour source that reads the draw's state per pixel
 // (firmware/device.cpp, PixelWriter; docs/TARGET.md, "Footprint"). The arithmetic is the same in
 // both, and so is every image.
 #pragma once
 
+#include "fixedpoint/build_goal.hpp"
+
 namespace tp::fw {
 
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
 inline constexpr bool kSizeBuild = true;
 #define TP_PIXEL_INLINE
 // A small helper of 64-bit arithmetic that GCC at -Os would still copy into each caller, kept

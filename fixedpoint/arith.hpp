@@ -82,7 +82,7 @@ template <QType To, QType A, QType B>
 constexpr To div(A num, B den) {
   // Quotient raw = n * 2^(FT + FB - FA) / d.
   constexpr int s = To::frac_bits + B::frac_bits - A::frac_bits;
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
   const detail::wide_t q = detail::div_raw(num.raw(), den.raw(), s, To::min_raw, To::max_raw);
   return To::from_raw(static_cast<typename To::storage_type>(q));
 #else

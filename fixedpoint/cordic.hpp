@@ -128,7 +128,7 @@ TP_FX_INLINE constexpr wide_t atan_q60(int i) {
 
 // Size builds keep one out-of-line loop for the four kinds of steps below (vectoring or rotation,
 // rounded or floor shifts), chosen at run time: the same steps, 430 bytes less on a Cortex-M3.
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
 TP_FX_OUTLINE constexpr void cordic_steps(wide_t& x_io, wide_t& y_io, wide_t& z_io, int n,
                                           bool rounded, bool vectoring) {
   wide_t x = x_io, y = y_io, z = z_io;  // in registers, not through the references, per step
@@ -154,7 +154,7 @@ TP_FX_OUTLINE constexpr void cordic_steps(wide_t& x_io, wide_t& y_io, wide_t& z_
 
 template <bool kRounded>
 constexpr void vectoring_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
   cordic_steps(x, y, z, n, kRounded, true);
 #else
   for (int i = 0; i < n; ++i) {
@@ -174,7 +174,7 @@ constexpr void vectoring_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
 }
 template <bool kRounded>
 constexpr void rotation_steps(wide_t& x, wide_t& y, wide_t& z, int n) {
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
   cordic_steps(x, y, z, n, kRounded, false);
 #else
   for (int i = 0; i < n; ++i) {
@@ -225,7 +225,7 @@ static_assert(kFastIterations == 8, "the residual bounds below assume 8 steps");
 // give them a loop of their own beside the shared cordic_steps: kb-exact turns by sin_cos_fast
 // twice per pixel and term, and with the bound fixed the loop shifts by i < 8 word by word and
 // reads the angles without a branch (docs/TARGET.md, "Footprint").
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
 // v >> i for 0 <= i < 32, word by word: GCC's 64-bit shift also covers i >= 32, in twice the
 // instructions on a 32-bit core. (hi << 1) << (31 − i) is hi << (32 − i) without a shift by 32
 // at i = 0.

@@ -19,15 +19,18 @@
 #include <limits>
 #include <type_traits>
 
+#include "fixedpoint/build_goal.hpp"
+
 namespace tp::fx {
 
-// Size builds (-Os defines __OPTIMIZE_SIZE__) keep one out-of-line copy of round_shift_right and
-// clamp below: on a 32-bit core each is a dozen instructions of 64-bit arithmetic, which GCC at -Os
-// otherwise copies into about a hundred callers (2,084 bytes of the Cortex-M3 -Os image; docs/
-// TARGET.md, "Footprint"). Speed builds inline them; the results are the same.
+// Size builds (TP_SIZE_BUILD, fixedpoint/build_goal.hpp; -Os by default) keep one out-of-line copy
+// of round_shift_right and clamp below: on a 32-bit core each is a dozen instructions of 64-bit
+// arithmetic, which GCC at -Os otherwise copies into about a hundred callers (2,084 bytes of the
+// Cortex-M3 -Os image; docs/TARGET.md, "Footprint"). Speed builds inline them; the results are
+// the same.
 // TP_FX_INLINE marks the few helpers a size build copies into a hot loop all the same, where a
 // call costs more time than the copy costs code (docs/TARGET.md, "Footprint").
-#ifdef __OPTIMIZE_SIZE__
+#if TP_SIZE_BUILD
 #define TP_FX_OUTLINE [[gnu::noinline]]
 #define TP_FX_INLINE [[gnu::always_inline]]
 #else

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Code and read-only data of a Cortex-M image by origin (firmware, port, libgcc, newlib), summed
-from the input sections of its GNU ld link map; the streams (section .streams) are not counted.
+"""Code and read-only data of a Cortex-M image by origin (firmware, port, libgcc, newlib), and its
+vector table, summed from the input sections of its GNU ld link map; the streams (section
+.streams) are not counted.
 Prints one line per (section, origin): section, origin, bytes. Used by scripts/target-size.sh
 (docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()) and
 tests/target/check_budget.sh.
@@ -35,7 +36,7 @@ def sizes(map_path):
             size, obj = int(nxt[1], 16), nxt[2]
         else:
             continue
-        if section not in (".text", ".rodata"):
+        if section not in (".vectors", ".text", ".rodata"):
             continue
         if "/firmware/" in obj:
             origin = "firmware"

@@ -12,39 +12,49 @@
 # per call) are taken out of the first table: one line when there are none (the firmware divides
 # with fixedpoint/divide.hpp), else a table of the calls per pixel written.
 #
-# Usage: bash scripts/target-cost.sh [--build DIR] [--methods m1,m2,...] [--full]
+# Usage: bash scripts/target-cost.sh [--build DIR] [--config CFG] [--methods m1,m2,...] [--full]
 #   DIR: a configured and built tree with the target images (default build/release).
+#   CFG: m3-O2 (the default), or a small part's build, m3-Os-small (flat, gouraud,
+#   kb-adaptive) or m3-Os-tiny (flat, gouraud, kb; its scenes with at most two lights): their
+#   CFG-cost-METHOD images, for the methods they link (the default --methods there).
 #   --full: the scenes at their own resolutions (512x512, 640x480; the m3-O2-cost-full-METHOD
 #   images) instead of 160x120: per-triangle and per-span work weigh less there, so the
 #   figures are nearer what a frame of the scene costs (about 90 s under -icount).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build/release
-kind=cost size=160x120
+kind=cost size=160x120 config=m3-O2 methods_given=
 methods="flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,brown-noskip,gouraud-subdivided,quadratic,quadratic-screen,envmap,blinn-map,quadratic-blinn-map,kb,kb-noskip,kb-decomposition,kb-exact,kb-adaptive,kb-adaptive-noskip,kb-adaptive-exact"
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) build=$2; shift 2 ;;
-    --methods) methods=$2; shift 2 ;;
+    --methods) methods=$2; methods_given=1; shift 2 ;;
+    --config) config=$2; shift 2 ;;
     --full) kind=cost-full size="the scenes' own resolutions"; shift ;;
-    *) echo "usage: $0 [--build DIR] [--methods m1,m2] [--full]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--build DIR] [--config CFG] [--methods m1,m2] [--full]" >&2; exit 2 ;;
   esac
 done
+if [ -z "$methods_given" ]; then
+  case "$config" in
+    m3-Os-small) methods=flat,gouraud,kb-adaptive ;;
+    m3-Os-tiny) methods=flat,gouraud,kb ;;
+  esac
+fi
 command -v qemu-system-arm >/dev/null || { echo "target-cost.sh: qemu-system-arm missing (scripts/install-deps.sh)" >&2; exit 1; }
 [ -d "$build" ] || { echo "target-cost.sh: no build tree $build (cmake --preset release && cmake --build --preset release)" >&2; exit 1; }
 cmake --build "$build" --target tp_target_images >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for m in ${methods//,/ }; do
-  image=$build/target/m3-O2-$kind-$m.elf
+  image=$build/target/$config-$kind-$m.elf
   [ -f "$image" ] || { echo "target-cost.sh: $image missing" >&2; exit 1; }
   timeout 600 qemu-system-arm -M mps2-an385 -icount shift=0 -nographic -monitor none \
     -semihosting-config enable=on,target=native -kernel "$image" </dev/null > "$tmp/$m.txt" 2>&1
   grep -qx done "$tmp/$m.txt" || { echo "target-cost.sh: $image failed:" >&2; tail -3 "$tmp/$m.txt" >&2; exit 1; }
 done
-python3 - "$tmp" "$methods" "$size" <<'PY'
+python3 - "$tmp" "$methods" "$size" "$config" <<'PY'
 import os, sys
-tmp, methods, size = sys.argv[1], sys.argv[2].split(","), sys.argv[3]
+tmp, methods, size, config = sys.argv[1], sys.argv[2].split(","), sys.argv[3], sys.argv[4]
 cost = {}  # (scene, method) -> instructions per pixel written
 divs = {}  # (scene, method) -> 64-bit division helper calls per pixel written
 calls_of = {}  # (scene, method) -> 64-bit division helper calls in the draws
@@ -65,7 +75,7 @@ for m in methods:
             divs[scene, m] = calls / written if written else float("nan")
             calls_of[scene, m] = calls
 base = "gouraud" if "gouraud" in methods else None
-print("Guest instructions per pixel written, Cortex-M3 (-O2), " + size +
+print("Guest instructions per pixel written, Cortex-M3 (" + config + "), " + size +
       (" (in brackets: ratio to gouraud)" if base else ""))
 print()
 print("| scene | " + " | ".join(methods) + " |")
