@@ -2,10 +2,11 @@
 """Code and read-only data of a Cortex-M image by origin (firmware, port, libgcc, newlib), and its
 vector table, summed from the input sections of its GNU ld link map; the streams (section
 .streams) are not counted.
-Prints one line per (section, origin): section, origin, bytes. Used by scripts/target-size.sh
+Prints one line per (section, origin): section, origin, bytes; then what a part's flash holds in
+all (the stream table left out); with --flash, only that number. Used by scripts/target-size.sh
 (docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()) and
 tests/target/check_budget.sh.
-Usage: python3 scripts/map_sizes.py IMAGE.map"""
+Usage: python3 scripts/map_sizes.py [--flash] IMAGE.map"""
 import re, sys
 
 
@@ -54,7 +55,18 @@ def sizes(map_path):
     return totals
 
 
+def flash_bytes(totals):
+    """What a part's flash holds of the image: every counted section and origin but the table of
+    the embedded streams (test data, as the streams themselves)."""
+    return sum(size for (_, origin), size in totals.items() if origin != "stream table")
+
+
 if __name__ == "__main__":
-    for (section, origin), size in sorted(sizes(sys.argv[1]).items()):
+    if len(sys.argv) == 3 and sys.argv[1] == "--flash":
+        print(flash_bytes(sizes(sys.argv[2])))
+        sys.exit(0)
+    totals = sizes(sys.argv[-1])
+    for (section, origin), size in sorted(totals.items()):
         if size:
             print("%-8s %-36s %8d" % (section, origin, size))
+    print("%-45s %8d" % ("flash in all (vectors, code, read-only data)", flash_bytes(totals)))
