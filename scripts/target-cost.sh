@@ -16,33 +16,34 @@
 #   DIR: a configured and built tree with the target images (default build/release).
 #   CFG: m3-O2 (the default), or a small part's build, m3-Os-small (flat, gouraud,
 #   kb-adaptive) or m3-Os-tiny (flat, gouraud, kb; its scenes with at most two lights): their
-#   CFG-cost-METHOD images, for the methods they link (the default --methods there).
+#   CFG-cost-METHOD images, for the methods they link (target/parts.cmake).
+#   --methods: default every method CFG links, in the order of DIR/target/CFG-cost-methods.txt
+#   (written by target/CMakeLists.txt).
 #   --full: the scenes at their own resolutions (512x512, 640x480; the m3-O2-cost-full-METHOD
 #   images) instead of 160x120: per-triangle and per-span work weigh less there, so the
 #   figures are nearer what a frame of the scene costs (about 90 s under -icount).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build/release
-kind=cost size=160x120 config=m3-O2 methods_given=
-methods="flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,brown-noskip,gouraud-subdivided,quadratic,quadratic-screen,envmap,blinn-map,quadratic-blinn-map,kb,kb-noskip,kb-decomposition,kb-exact,kb-adaptive,kb-adaptive-noskip,kb-adaptive-exact"
+kind=cost size=160x120 config=m3-O2 methods=
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) build=$2; shift 2 ;;
-    --methods) methods=$2; methods_given=1; shift 2 ;;
+    --methods) methods=$2; shift 2 ;;
     --config) config=$2; shift 2 ;;
     --full) kind=cost-full size="the scenes' own resolutions"; shift ;;
     *) echo "usage: $0 [--build DIR] [--config CFG] [--methods m1,m2] [--full]" >&2; exit 2 ;;
   esac
 done
-if [ -z "$methods_given" ]; then
-  case "$config" in
-    m3-Os-small) methods=flat,gouraud,kb-adaptive ;;
-    m3-Os-tiny) methods=flat,gouraud,kb ;;
-  esac
-fi
 command -v qemu-system-arm >/dev/null || { echo "target-cost.sh: qemu-system-arm missing (scripts/install-deps.sh)" >&2; exit 1; }
 [ -d "$build" ] || { echo "target-cost.sh: no build tree $build (cmake --preset release && cmake --build --preset release)" >&2; exit 1; }
 cmake --build "$build" --target tp_target_images >/dev/null
+if [ -z "$methods" ]; then
+  # Every method the configuration links, as target/CMakeLists.txt lists its cost images.
+  list=$build/target/$config-cost-methods.txt
+  [ -f "$list" ] || { echo "target-cost.sh: no cost images for $config ($list missing)" >&2; exit 1; }
+  methods=$(cat "$list")
+fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for m in ${methods//,/ }; do
