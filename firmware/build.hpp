@@ -5,7 +5,7 @@
 // (TP_SIZE_BUILD, fixedpoint/build_goal.hpp: -Os by default) leaves the inlining to the compiler
 // (the Cortex-M size images ask it to inline less: TP_SIZE_FLAGS in target/CMakeLists.txt), takes
 // the general loops, and has one pixel loop per colour source that reads the draw's state per pixel
-// (firmware/device.cpp, PixelWriter; docs/TARGET.md, "Footprint"). The arithmetic is the same in
+// (firmware/draw.cpp, PixelWriter; docs/TARGET.md, "Footprint"). The arithmetic is the same in
 // both, and so is every image.
 #pragma once
 

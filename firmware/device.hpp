@@ -71,6 +71,9 @@ struct DeviceState {
               off_counts = 0, off_span = 0, off_levels = 0, off_method = 0, end = 0;
 };
 
+// The colour region's bytes per pixel.
+constexpr std::size_t bytes_per_pixel(PixelFormat f) { return f == PixelFormat::kRgb565 ? 2 : 3; }
+
 struct FramebufferView {
   const std::uint8_t* data = nullptr;  // row 0 first
   std::uint32_t width = 0, height = 0;
@@ -121,7 +124,8 @@ inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_w
   return static_cast<std::uint32_t>(op) | (payload_words << 16);
 }
 
-class PixelWriter;  // device.cpp: a draw's depth test and framebuffer writes
+class PixelWriter;    // draw.cpp: a draw's depth test and framebuffer writes
+struct MethodTraits;  // registry.hpp
 
 class Device {
  public:
@@ -176,6 +180,7 @@ class Device {
   bool layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const;
   void clear_regions(Rgb8 colour);
   ShadingMethod& method() { return *method_; }
+  static MethodTraits method_traits(Method m);  // its registry row's; none for an unlinked id
   void construct_method();
   void release_method();
   template <class T>

@@ -140,11 +140,9 @@ class ShadingMethod {
   // Colours of pixels [s.x0, s.x1) of row s.y, into out[0 .. x1 - x0); for a method that
   // declares kSkipsHiddenPixels, of [s.first, s.last) only (the other entries are not read).
   virtual void shade_span(const Span& s, Rgb8* out) = 0;
-  // For a method whose class declares kColoursLinear (above): the span's colours.
-  virtual LinearColours linear_span(const Span& s) {
-    static_cast<void>(s);
-    return LinearColours{};
-  }
+  // For a method whose class declares kColoursLinear (above): the span's colours. The default,
+  // for the others, is never called (device.cpp).
+  virtual LinearColours linear_span(const Span& s);
 
  protected:
   ~ShadingMethod() = default;

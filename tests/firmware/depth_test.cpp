@@ -150,7 +150,7 @@ DrawCounts counts_of_draw(Rig& rig, DrawCmd draw) {
           after.pixels_shaded - before.pixels_shaded, after.pixels_written - before.pixels_written};
 }
 
-// Early depth (device.cpp, PixelWriter::visible_part): a method that declares kSkipsHiddenPixels is
+// Early depth (draw.cpp, PixelWriter::visible_part): a method that declares kSkipsHiddenPixels is
 // asked for the visible part of a span only and not at all for a hidden span; the others shade
 // every pixel. The image is the same either way (docs/DECISIONS.md, "Early depth").
 TEST(EarlyDepth, HiddenSpansAndEndsAreNotShaded) {
