@@ -34,8 +34,8 @@ inline std::uint64_t framebuffer_fnv1a(const std::uint8_t* data, std::uint32_t h
 
 // The same for the device's framebuffer: 3 bytes per pixel in RGB888, 2 in RGB565.
 inline std::uint64_t framebuffer_fnv1a(const fw::FramebufferView& fb) {
-  const std::size_t bpp = fb.format == fw::PixelFormat::kRgb888 ? 3 : 2;
-  return framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width);
+  return framebuffer_fnv1a(fb.data, fb.height, fb.stride,
+                           fw::bytes_per_pixel(fb.format) * fb.width);
 }
 
 }  // namespace tp::target

@@ -2,7 +2,7 @@
 // `tinyphong record`, linked in by streams.S) through a fresh tp::fw::Device in a static memory
 // block, and prints per stream
 //     stream NAME HASH          (FNV-1a 64 of the framebuffer's colour bytes, target/fnv1a.hpp)
-// or  stream NAME error CODE at word OFFSET
+// or  stream NAME error CODE at word OFFSET   (target/report.hpp, as the replay image prints them)
 // then "done"; exits (semihosting) with success iff every stream ran. tests/target compares
 // the hashes with `tinyphong replay --hash` of the same .tpcmd files.
 //
@@ -21,7 +21,7 @@
 #include <span>
 
 #include "firmware/device.hpp"
-#include "target/fnv1a.hpp"
+#include "target/report.hpp"
 #include "target/semihost.hpp"
 #include "target/stack_mark.hpp"
 
@@ -162,22 +162,7 @@ bool run(const EmbeddedStream& s) {
 #else
   const tp::fw::Error e = device->execute(std::span<const std::uint32_t>(s.words, s.word_count));
 #endif
-  write("stream ");
-  write(s.name);
-  bool ok = e == tp::fw::Error::kOk && device->state().viewport_set;
-  if (ok) {
-    const tp::fw::FramebufferView fb = device->framebuffer();
-    const std::size_t bpp = fb.format == tp::fw::PixelFormat::kRgb888 ? 3 : 2;
-    write(" ");
-    write_hex64(framebuffer_fnv1a(fb.data, fb.height, fb.stride, bpp * fb.width));
-    write("\n");
-  } else {
-    write(" error ");
-    write_dec(static_cast<std::uint32_t>(e));
-    write(" at word ");
-    write_dec(device->words_consumed());
-    write("\n");
-  }
+  const bool ok = report_stream(s.name, *device, e, device->words_consumed());
   device->~Device();
   return ok;
 }

@@ -22,7 +22,7 @@
 #include <span>
 
 #include "firmware/device.hpp"
-#include "target/fnv1a.hpp"
+#include "target/report.hpp"
 #include "target/semihost.hpp"
 #include "target/stack_mark.hpp"
 
@@ -111,27 +111,6 @@ std::size_t whole_commands(std::size_t count) {
   std::size_t at = 0;
   while (at < count && (words[at] >> 16) < count - at) at += 1 + (words[at] >> 16);
   return at;
-}
-
-// The line main.cpp prints per stream (tests/target reads both), for a stream that `device` ran up
-// to word `word` with error `e`; whether it gave a frame (every command ran and it set a viewport;
-// otherwise the error is printed, 0 for a stream without a viewport).
-bool report_stream(const char* name, const Device& device, Error e, std::size_t word) {
-  using namespace tp::target;
-  write("stream ");
-  write(name);
-  const bool frame = e == Error::kOk && device.state().viewport_set;
-  if (frame) {
-    write(" ");
-    write_hex64(framebuffer_fnv1a(device.framebuffer()));
-  } else {
-    write(" error ");
-    write_dec(static_cast<std::uint32_t>(e));
-    write(" at word ");
-    write_dec(word);
-  }
-  write("\n");
-  return frame;
 }
 
 // Where feeding a file stopped: the device's error and the word of the file it stopped at (kOk
