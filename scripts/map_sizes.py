@@ -3,10 +3,10 @@
 vector table, summed from the input sections of its GNU ld link map; the streams (section
 .streams) are not counted.
 Prints one line per (section, origin): section, origin, bytes; then what a part's flash holds in
-all (the stream table left out); with --flash, only that number. Used by scripts/target-size.sh
+all (the stream table left out). Used by scripts/target-size.sh
 (docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()) and
 tests/target/check_budget.sh.
-Usage: python3 scripts/map_sizes.py [--flash] IMAGE.map"""
+Usage: python3 scripts/map_sizes.py IMAGE.map"""
 import re, sys
 
 
@@ -62,10 +62,7 @@ def flash_bytes(totals):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--flash":
-        print(flash_bytes(sizes(sys.argv[2])))
-        sys.exit(0)
-    totals = sizes(sys.argv[-1])
+    totals = sizes(sys.argv[1])
     for (section, origin), size in sorted(totals.items()):
         if size:
             print("%-8s %-36s %8d" % (section, origin, size))

@@ -10,7 +10,7 @@ set -euo pipefail
 sizes=$(python3 "$1" "$2")
 if [ "$3" = flash ]; then
   what="flash (vectors, code and read-only data but the streams)"
-  bytes=$(python3 "$1" --flash "$2")
+  bytes=$(awk '/^flash in all / { print $NF }' <<<"$sizes")
 else
   what="firmware $3"
   bytes=$(awk -v section="$3" '$1 == section && $2 == "firmware" { print $3 }' <<<"$sizes")
