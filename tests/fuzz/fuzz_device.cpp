@@ -8,7 +8,12 @@
 //  - a command that succeeds leaves last_error() == kOk;
 //  - execute() on the whole stream stops where A met its first error, with the same error, the
 //    same words consumed, and the same state, counters and memory (or, without an error,
-//    consumes everything and ends in A's state).
+//    consumes everything and ends in A's state);
+//  - a verification variant draws its method's image (the registry's same_image_as: kb-noskip
+//    kb's, kb-adaptive-noskip kb-adaptive's, brown-noskip brown's): device C runs the stream with
+//    every method that has a twin swapped for it, in step with A up to A's first failing
+//    command; each command must succeed or fail as A's does, and after every draw C's colour,
+//    depth and write-count buffers must equal A's.
 // After its first error A goes on with the next command, so that the fuzzer can keep building
 // state past a bad command.
 #include <algorithm>
@@ -22,6 +27,7 @@
 #include <vector>
 
 #include "firmware/device.hpp"
+#include "firmware/registry.hpp"
 #include "tests/fuzz/fuzz_check.hpp"
 
 namespace {
@@ -103,6 +109,71 @@ std::size_t command_end(std::span<const std::uint32_t> words, std::size_t at) {
   return std::min(words.size(), at + 1 + len);
 }
 
+// The registry's verification variants come in pairs: a method named by one variant at most,
+// which names none itself (twin_of is then its own inverse).
+constexpr bool twins_are_pairs() {
+  for (const tp::fw::MethodInfo& row : tp::fw::kMethodTable) {
+    if (row.same_image_as == tp::fw::Method{}) continue;
+    int named = 0;
+    for (const tp::fw::MethodInfo& other : tp::fw::kMethodTable) {
+      if (other.same_image_as == row.same_image_as) ++named;
+      if (other.id == row.same_image_as && other.same_image_as != tp::fw::Method{}) return false;
+    }
+    if (named != 1) return false;
+  }
+  return true;
+}
+static_assert(twins_are_pairs(), "a method named by two verification variants, or a chain");
+
+// The method whose image m must reproduce, or the variant that must reproduce m's; m itself if
+// it has no twin.
+tp::fw::Method twin_of(tp::fw::Method m) {
+  if (m == tp::fw::Method{}) return m;  // no method: the rows without a twin name it
+  for (const tp::fw::MethodInfo& row : tp::fw::kMethodTable) {
+    if (row.id == m && row.same_image_as != tp::fw::Method{}) return row.same_image_as;
+    if (row.same_image_as == m) return row.id;
+  }
+  return m;
+}
+
+// The stream with the method of every set_method command swapped for its twin; empty if none
+// has one (the twin stream would be the stream itself).
+std::vector<std::uint32_t> twin_stream(std::span<const std::uint32_t> stream) {
+  std::vector<std::uint32_t> words(stream.begin(), stream.end());
+  bool swapped = false;
+  for (std::size_t at = 0; at < words.size();) {
+    const std::size_t end = command_end(words, at);
+    const auto op = static_cast<tp::fw::Opcode>(words[at] & 0xffffu);
+    if (op == tp::fw::Opcode::kSetMethod && end - at == 2) {
+      const auto m = static_cast<tp::fw::Method>(words[at + 1]);
+      const tp::fw::Method twin = twin_of(m);
+      if (twin != m) {
+        words[at + 1] = static_cast<std::uint32_t>(twin);
+        swapped = true;
+      }
+    }
+    at = end;
+  }
+  if (!swapped) words.clear();
+  return words;
+}
+
+// Whether two devices hold the same image: colour, depth and write counts, as read back.
+bool same_image(const Device& x, const Device& y) {
+  const tp::fw::FramebufferView fx = x.framebuffer(), fy = y.framebuffer();
+  if (fx.width != fy.width || fx.height != fy.height || fx.stride != fy.stride ||
+      fx.format != fy.format)
+    return false;
+  const std::size_t pixels = std::size_t{fx.width} * fx.height;
+  if (!std::equal(fx.data, fx.data + std::size_t{fx.stride} * fx.height, fy.data)) return false;
+  const std::uint32_t *dx = x.depth_buffer(), *dy = y.depth_buffer();
+  if ((dx == nullptr) != (dy == nullptr)) return false;
+  if (dx != nullptr && !std::equal(dx, dx + pixels, dy)) return false;
+  const std::uint8_t *cx = x.write_counts(), *cy = y.write_counts();
+  if ((cx == nullptr) != (cy == nullptr)) return false;
+  return cx == nullptr || std::equal(cx, cx + pixels, cy);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -121,12 +192,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Snapshot before, after, at_b;
   take(b, memory_b, at_b);
 
+  // Device C runs the twin stream in step with A, up to A's first failing command.
+  const std::vector<std::uint32_t> twins = twin_stream(words);
+  static std::vector<std::byte> memory_c(memory_bytes());
+  alignas(Device) static std::array<std::byte, sizeof(Device)> storage_c;
+  Device* c = nullptr;
+  if (!twins.empty()) {
+    std::fill(memory_c.begin(), memory_c.end(), std::byte{0});
+    c = new (storage_c.data()) Device{std::span<std::byte>(memory_c)};
+  }
+
   bool compared = false;
   for (std::size_t at = 0; at < words.size();) {
     const std::size_t end = command_end(words, at);
     take(a, memory_a, before);
     const Error e = a.execute(std::span<const std::uint32_t>(words).subspan(at, end - at));
     TP_FUZZ_CHECK(a.last_error() == e, "last_error() is the command's result");
+    if (c != nullptr && !compared) {
+      const Error ec = c->execute(std::span<const std::uint32_t>(twins).subspan(at, end - at));
+      TP_FUZZ_CHECK(ec == e, "a method and its twin fail the same commands");
+      if (e == Error::kOk &&
+          static_cast<tp::fw::Opcode>(words[at] & 0xffffu) == tp::fw::Opcode::kDraw)
+        TP_FUZZ_CHECK(same_image(a, *c), "a verification variant draws its method's image");
+    }
     if (e != Error::kOk) {
       take(a, memory_a, after);
       TP_FUZZ_CHECK(same(before, after), "a failing command changed the device");
@@ -147,6 +235,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     TP_FUZZ_CHECK(same_across_devices(after, at_b),
                   "execute() on the stream ends in the same state");
   }
+  if (c != nullptr) c->~Device();
   a.~Device();
   b.~Device();
   return 0;
