@@ -10,9 +10,10 @@ Usage: python3 scripts/map_sizes.py IMAGE.map"""
 import re, sys
 
 
-def sizes(map_path):
-    """{(section, origin): bytes} of the image whose GNU ld link map is at map_path."""
-    totals = {}
+def input_sections(map_path):
+    """[(output section, input section, address, bytes, object)] of the image's .vectors, .text
+    and .rodata, in the order of its GNU ld link map at map_path."""
+    found = []
     section = None
     lines = open(map_path).read().split("\n")
     started = False
@@ -29,29 +30,41 @@ def sizes(map_path):
         # with the address, size and object on the next.
         m = re.match(r"^ (\.[\w.\-$]+)\s+(0x[0-9a-f]+)\s+(0x[0-9a-f]+)\s+(\S+)", line)
         if m:
-            size, obj = int(m.group(3), 16), m.group(4)
+            name, address, size, obj = m.group(1), int(m.group(2), 16), int(m.group(3), 16), m.group(4)
         elif re.match(r"^ (\.[\w.\-$]+)\s*$", line) and i + 1 < len(lines):
             nxt = lines[i + 1].split()
             if len(nxt) < 3 or not nxt[0].startswith("0x") or not nxt[1].startswith("0x"):
                 continue
-            size, obj = int(nxt[1], 16), nxt[2]
+            name, address, size, obj = line.strip(), int(nxt[0], 16), int(nxt[1], 16), nxt[2]
         else:
             continue
-        if section not in (".vectors", ".text", ".rodata"):
-            continue
-        if "/firmware/" in obj:
-            origin = "firmware"
-        elif "port_" in obj or "main_" in obj or "cost_" in obj or "part_" in obj:
-            origin = "port (startup, semihosting, main)"
-        elif "streams" in obj:
-            origin = "stream table"
-        elif "libgcc" in obj:
-            origin = "libgcc"
-        elif "libc" in obj or "libg" in obj or "libstdc++" in obj:
-            origin = "newlib"
-        else:
-            origin = "other"
-        totals[section, origin] = totals.get((section, origin), 0) + size
+        if section in (".vectors", ".text", ".rodata"):
+            found.append((section, name, address, size, obj))
+    return found
+
+
+def origin_of(obj):
+    """Where an input section's object comes from: firmware, the port, the stream table, libgcc,
+    newlib, or other."""
+    if "/firmware/" in obj:
+        return "firmware"
+    if "port_" in obj or "main_" in obj or "cost_" in obj or "part_" in obj:
+        return "port (startup, semihosting, main)"
+    if "streams" in obj:
+        return "stream table"
+    if "libgcc" in obj:
+        return "libgcc"
+    if "libc" in obj or "libg" in obj or "libstdc++" in obj:
+        return "newlib"
+    return "other"
+
+
+def sizes(map_path):
+    """{(section, origin): bytes} of the image whose GNU ld link map is at map_path."""
+    totals = {}
+    for section, _, _, size, obj in input_sections(map_path):
+        key = section, origin_of(obj)
+        totals[key] = totals.get(key, 0) + size
     return totals
 
 

@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""How often the Cortex-M3 -Os image's firmware code runs: for every function (one input section
+each, -ffunction-sections), the largest share it takes of any run's guest instructions, over
+every method on a few paper scenes at 160x120 (docs/TARGET.md, "Where the code runs"). A
+benchmark, not a test: it bounds any design that would keep the rarely run code in a slower but
+denser form (a bytecode and its interpreter) to fit 48 KiB.
+
+Each run is one recorded stream (`tinyphong record`) fed to the m3-Os replay image
+(target/replay.cpp) under `qemu-system-arm -d in_asm,exec,nochain`: QEMU logs every translated
+block's instructions once and every execution of a block, so a block's executions times its
+length, summed over the blocks in a function's address range (from the link map,
+scripts/map_sizes.py), give the function's executed instructions. Every run's frame hash must
+equal the host's (`tinyphong replay --hash`). The whole run, counted from reset, includes the
+upload of the stream's vertices and the image's own start, so the shares are of the run, not of
+the draw alone.
+
+Prints the firmware's code by the largest share its functions take of any run, and the bytes that
+a greedy choice (functions by share per byte, least first) can take while all the chosen
+functions together stay within a share of every run.
+
+Usage: python3 scripts/target-code-heat.py [--build DIR] [--methods m1,m2] [--scenes s1,s2]
+       [--jobs N] [--top N]
+  DIR: a built tree (default build/release); --methods: default every method `tinyphong methods`
+  lists; --scenes: paper scenes (default teapot-l4,sphere-40-l2,dodecahedron-30-l8,triangle);
+  --top: also list the N largest functions. Last, for the firmware's bytes over 48 KiB, the share
+  of a run that the code a slower form would have to replace takes. The defaults' 84 runs took
+  26 minutes on two cores (2026-12-06), most of it the teapot's with the per-pixel methods."""
+import argparse, bisect, collections, concurrent.futures, functools, os, subprocess, sys, tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from map_sizes import input_sections, origin_of  # noqa: E402
+
+IMAGE = "m3-Os-replay"
+SCENES = "teapot-l4,sphere-40-l2,dodecahedron-30-l8,triangle"
+SHARES = (1e-4, 1e-3, 3e-3, 1e-2, 3e-2)
+BUDGETS = (0.005, 0.01, 0.02, 0.05, 0.10)
+TARGET = 48 * 1024  # issue 12's firmware code at -Os
+DENSITIES = (0.0, 0.25, 0.5)  # a slower form's bytes per byte of Thumb-2 it replaces
+
+
+def firmware_functions(map_path):
+    """[(address, bytes, section name)] of the firmware's code, by address."""
+    return sorted((address, size, name) for section, name, address, size, obj in input_sections(map_path)
+                  if section == ".text" and origin_of(obj) == "firmware" and size > 0)
+
+
+def demangled(sections):
+    """The C++ names of .text.MANGLED input sections."""
+    names = [name[len(".text."):] if name.startswith(".text.") else name for name in sections]
+    return subprocess.run(["c++filt"], input="\n".join(names), capture_output=True, text=True,
+                          check=True).stdout.splitlines()
+
+
+def trace(image, stream, workdir):
+    """({block address: executed instructions}, the image's console) of one run of the stream."""
+    fifo = os.path.join(workdir, os.path.basename(stream) + ".fifo")
+    os.mkfifo(fifo)
+    qemu = subprocess.Popen(
+        ["qemu-system-arm", "-M", "mps2-an385", "-nographic", "-monitor", "none",
+         "-semihosting-config", "enable=on,target=native", "-kernel", image,
+         "-append", os.path.basename(stream), "-d", "in_asm,exec,nochain", "-D", fifo],
+        cwd=os.path.dirname(stream), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE, text=True)
+    length, executions = {}, collections.Counter()
+    block = None
+    with open(fifo, buffering=1 << 20) as log:
+        for line in log:
+            if line.startswith("Trace"):  # "Trace 0: HOST [FLAGS/PC/...] ..."
+                executions[int(line.split("[", 1)[1].split("/", 2)[1], 16)] += 1
+            elif line.startswith("IN:"):
+                block = None
+            elif line.startswith("0x"):  # "0xADDR:  encoding  instruction" of a translated block
+                if block is None:
+                    block = int(line.split(":", 1)[0], 16)
+                    length[block] = 0
+                length[block] += 1
+    console = qemu.communicate()[1]
+    os.remove(fifo)
+    if qemu.returncode != 0:
+        sys.exit("target-code-heat.py: %s failed on %s:\n%s" % (image, stream, console))
+    return {pc: n * length[pc] for pc, n in executions.items()}, console
+
+
+def per_function(functions, instructions):
+    """[executed instructions of each function], and the run's instructions in all."""
+    starts = [f[0] for f in functions]
+    counts = [0] * len(functions)
+    for pc, n in instructions.items():
+        i = bisect.bisect_right(starts, pc) - 1
+        if i >= 0 and pc < functions[i][0] + functions[i][1]:
+            counts[i] += n
+    return counts, sum(instructions.values())
+
+
+def greedy(functions, shares, budget):
+    """Bytes of the functions a greedy choice takes, least share per byte first, while the chosen
+    together stay within `budget` of every run's instructions."""
+    order = sorted(range(len(functions)), key=lambda i: max(s[i] for s in shares) / functions[i][1])
+    sums = [0.0] * len(shares)
+    chosen = 0
+    for i in order:
+        if all(sums[r] + shares[r][i] <= budget for r in range(len(shares))):
+            chosen += functions[i][1]
+            for r in range(len(shares)):
+                sums[r] += shares[r][i]
+    return chosen
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build/release"))
+    ap.add_argument("--methods")
+    ap.add_argument("--scenes", default=SCENES)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--top", type=int, default=0)
+    args = ap.parse_args()
+    build = os.path.abspath(args.build)  # QEMU runs in the streams' folder
+    cli = os.path.join(build, "host/tinyphong")
+    image = os.path.join(build, "target", IMAGE + ".elf")
+    for path in (cli, image):
+        if not os.path.exists(path):
+            sys.exit("target-code-heat.py: %s missing (cmake --build --preset release)" % path)
+    methods = (args.methods.split(",") if args.methods else
+               [line.split("\t")[0] for line in subprocess.run([cli, "methods"], check=True, capture_output=True,
+                                                               text=True).stdout.splitlines()])
+    functions = firmware_functions(os.path.join(build, "target", IMAGE + ".map"))
+    with tempfile.TemporaryDirectory() as tmp:
+        streams = []
+        for method in methods:
+            for scene in args.scenes.split(","):
+                path = os.path.join(tmp, "%s.%s.tpcmd" % (method, scene))
+                subprocess.run([cli, "record", os.path.join(ROOT, "scenes", scene + ".json"), "--method", method,
+                                "--size", "160x120", "-o", path], check=True, stdout=subprocess.DEVNULL)
+                streams.append(path)
+        with concurrent.futures.ProcessPoolExecutor(args.jobs) as pool:  # the log's parse holds a core
+            traced = list(pool.map(functools.partial(trace, image, workdir=tmp), streams))
+        shares = []
+        for stream, (instructions, console) in zip(streams, traced):
+            host = subprocess.run([cli, "replay", "--hash", stream], check=True, capture_output=True,
+                                  text=True).stdout.split()[0]
+            line = "stream %s %s" % (os.path.basename(stream), host)
+            if line not in console.splitlines():
+                sys.exit("target-code-heat.py: the core's frame of %s is not the host's %s:\n%s" % (stream, host, console))
+            counts, total = per_function(functions, instructions)
+            shares.append([c / total for c in counts])
+    largest = [max(s[i] for s in shares) for i in range(len(functions))]
+    code = sum(f[1] for f in functions)
+    print("%d runs (%d methods x %s at 160x120), %s; firmware code %d bytes in %d functions" %
+          (len(shares), len(methods), args.scenes, IMAGE, code, len(functions)))
+    print("\n| functions that take less than this share of every run | functions | bytes | "
+          "those functions together, at most, of a run |")
+    print("|---|---:|---:|---:|")
+    never = [i for i in range(len(functions)) if largest[i] == 0]
+    print("| never run | %d | %d | 0 |" % (len(never), sum(functions[i][1] for i in never)))
+    for limit in SHARES:
+        cold = [i for i in range(len(functions)) if largest[i] < limit]
+        together = max(sum(s[i] for i in cold) for s in shares)
+        print("| %s | %d | %d | %s |" % (format(limit, ".2%"), len(cold), sum(functions[i][1] for i in cold),
+                                         format(together, ".2%")))
+    print("\n| the chosen functions together at most, of every run | bytes (greedy) |")
+    print("|---|---:|")
+    for budget in BUDGETS:
+        print("| %s | %d |" % (format(budget, ".1%"), greedy(functions, shares, budget)))
+    gap = code - TARGET
+    if gap > 0:
+        print("\n%d bytes over 48 KiB: what a slower form taking d bytes per byte of the code it replaces would have "
+              "to hold (the interpreter not counted)\n" % gap)
+        print("| d | bytes to replace | the chosen functions together, of some run (greedy) |")
+        print("|---:|---:|---:|")
+        for d in DENSITIES:
+            need = gap / (1 - d)
+            lo, hi = 0.0, 1.0
+            for _ in range(24):  # the least budget whose greedy choice holds `need` bytes
+                mid = (lo + hi) / 2
+                lo, hi = (lo, mid) if greedy(functions, shares, mid) >= need else (mid, hi)
+            print("| %.2f | %d | %s |" % (d, need, format(hi, ".2%")))
+    if args.top:
+        print("\n| bytes | largest share of a run | function |")
+        print("|---:|---:|---|")
+        top = sorted(range(len(functions)), key=lambda i: -functions[i][1])[:args.top]
+        for i, name in zip(top, demangled([functions[i][2] for i in top])):
+            print("| %d | %s | `%s` |" % (functions[i][1], format(largest[i], ".3%"), name.split("(")[0]))
+
+
+if __name__ == "__main__":
+    main()
