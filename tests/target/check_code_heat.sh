@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/target-code-heat.py on gouraud's and kb's triangle: it checks each run's frame against
-# the host's and stops on a block in the firmware's code that lies in no function; here its
+# the host's and stops on a block that lies in no section of the image's code; here its
 # functions must hold all the firmware's code of the replay image's link map (as
 # scripts/map_sizes.py reads it), and their instructions must fall where the two methods run:
 # Gouraud's span and kb's set-up run, Bishop-Weimer's expansion does not. So the tables of
