@@ -136,8 +136,8 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
       constexpr std::size_t kChunk = 8;
       Vertex buf[kChunk];
       for (int pass = 0; pass < 2; ++pass) {
-        if (std::uint64_t{p[0]} + p[1] > state_.capacity.max_vertices)
-          return fail(Error::kIndexOutOfRange);
+        if (std::uint64_t{p[0]} + p[1] > state_.capacity.max_vertices || p[0] > state_.vertex_count)
+          return fail(Error::kIndexOutOfRange);  // upload_vertices' own checks, before any write
         for (std::uint32_t done = 0; done < p[1];) {
           const std::uint32_t n = p[1] - done < kChunk ? p[1] - done : kChunk;
           for (std::uint32_t i = 0; i < n; ++i) {

@@ -337,9 +337,13 @@ Error Device::validate_vertex(const Vertex& v) {
   return unit_ok(v.normal) ? Error::kOk : Error::kNotUnit;
 }
 
+// An upload starts at or below the count so far: the slots below the count are then exactly the
+// ones uploaded (and validated) since the buffers were laid out. A gap would make slots the draw
+// may index, and whose transform it trusts to coordinate_bound, of bytes no command wrote.
 Error Device::upload_vertices(std::uint32_t first, std::span<const Vertex> vertices) {
   const std::uint64_t end = std::uint64_t{first} + vertices.size();
-  if (end > state_.capacity.max_vertices) return fail(Error::kIndexOutOfRange);
+  if (end > state_.capacity.max_vertices || first > state_.vertex_count)
+    return fail(Error::kIndexOutOfRange);
   for (const Vertex& v : vertices) {
     const Error e = validate_vertex(v);
     if (e != Error::kOk) return fail(e);
@@ -359,7 +363,8 @@ Error Device::upload_vertices(std::uint32_t first, std::span<const Vertex> verti
 
 Error Device::upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices) {
   const std::uint64_t end = std::uint64_t{first} + indices.size();
-  if (end > state_.capacity.max_indices) return fail(Error::kIndexOutOfRange);
+  if (end > state_.capacity.max_indices || first > state_.index_count)
+    return fail(Error::kIndexOutOfRange);
   if (!indices.empty())
     std::memcpy(region<std::uint32_t>(state_.off_indices) + first, indices.data(),
                 indices.size_bytes());

@@ -61,7 +61,7 @@ struct DeviceState {
   Method method = Method::kGouraud;
   bool cull_back_faces = true;
   bool depth_test = true;
-  std::uint32_t vertex_count = 0;  // vertices uploaded so far (high-water mark)
+  std::uint32_t vertex_count = 0;  // vertices uploaded so far (high-water mark, no gaps)
   std::uint32_t index_count = 0;
   // The largest |coordinate| (raw Q15.16) uploaded since the capacity was set: lets a draw prove
   // that every position transforms (geometry.hpp, transform_cannot_fail).
@@ -153,6 +153,9 @@ class Device {
   Error set_depth_test(bool on);
   // The error budget (ShadeContext::budget_levels): kBadArgument outside 1 .. kMaxBudgetLevels.
   Error set_budget(std::uint32_t levels);
+  // Uploads into the buffers laid out by set_buffer_capacity. kIndexOutOfRange when the range
+  // ends beyond the capacity or starts beyond the count uploaded so far (no gaps: every slot a
+  // draw may use was written by an upload); an empty upload within those bounds changes nothing.
   Error upload_vertices(std::uint32_t first, std::span<const Vertex> vertices);
   Error upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);
   Error clear(Rgb8 colour);  // colour, depth = far, counts = 0, counters reset (not frames)

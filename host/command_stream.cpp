@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "host/text_file.hpp"
 #include "target/fnv1a.hpp"
 
 namespace tp::host {
@@ -228,15 +229,19 @@ StreamReplay::StreamReplay(std::span<const std::uint32_t> words, std::size_t max
 }
 
 std::vector<std::uint32_t> read_command_file(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error(path + ": cannot open");
-  const std::vector<char> bytes{std::istreambuf_iterator<char>(f), {}};
-  if (f.bad()) throw std::runtime_error(path + ": read error");
+  std::string bytes;
+  switch (read_text_file(path, kMaxCommandFileBytes, bytes)) {
+    case ReadResult::ok: break;
+    case ReadResult::cannot_open: throw std::runtime_error(path + ": cannot open or read");
+    case ReadResult::too_large:
+      throw std::runtime_error(path + ": larger than " + std::to_string(kMaxCommandFileBytes) +
+                               " bytes (the limit of a command file)");
+  }
   if (bytes.size() % 4 != 0)
     throw std::runtime_error(path + ": " + std::to_string(bytes.size()) +
                              " bytes is not a whole number of 32-bit words (a truncated file?)");
   std::vector<std::uint32_t> words(bytes.size() / 4);
-  std::memcpy(words.data(), bytes.data(), bytes.size());
+  if (!bytes.empty()) std::memcpy(words.data(), bytes.data(), bytes.size());
   return words;
 }
 

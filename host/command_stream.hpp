@@ -89,7 +89,9 @@ class StreamReplay {
 };
 
 // .tpcmd files. read_command_file throws std::runtime_error naming the file if it cannot be
-// read or is not a whole number of 32-bit words.
+// read, holds more than kMaxCommandFileBytes (refused before more is read: /dev/zero ends) or is
+// not a whole number of 32-bit words. A paper scene's frame is at most a few hundred KiB.
+inline constexpr std::size_t kMaxCommandFileBytes = std::size_t{64} << 20;
 std::vector<std::uint32_t> read_command_file(const std::string& path);
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words);
 

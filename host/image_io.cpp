@@ -18,7 +18,9 @@ void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc
     throw ImageIoError("cannot write " + file.string() + ": " + out->geterror());
 }
 
-// Reads all pixels as `type`, keeping the first three channels (grey is replicated).
+// Reads all pixels as `type`, keeping the first three channels (grey, with or without alpha, is
+// replicated). The size the file declares is checked before anything is allocated for it: a
+// 69-byte PNG can declare 20000 × 20000 pixels.
 template <class T>
 std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type, int& w, int& h) {
   auto in = OIIO::ImageInput::open(file.string());
@@ -27,6 +29,13 @@ std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type
   w = spec.width;
   h = spec.height;
   const int nc = spec.nchannels;
+  if (w <= 0 || h <= 0 || spec.depth != 1 || nc <= 0 || nc > kMaxImageChannels ||
+      static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > kMaxImagePixels)
+    throw ImageIoError("cannot read " + file.string() + ": it declares " + std::to_string(w) +
+                       " x " + std::to_string(h) + " pixels of " + std::to_string(nc) +
+                       " channels; at most " + std::to_string(kMaxImagePixels) +
+                       " pixels of 1 to " + std::to_string(kMaxImageChannels) +
+                       " channels are read");
   std::vector<T> all(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
                      static_cast<std::size_t>(nc));
   if (!in->read_image(0, 0, 0, nc, type, all.data()))
@@ -35,8 +44,7 @@ std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type
   std::vector<T> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
   for (std::size_t p = 0; p < rgb.size() / 3; ++p)
     for (std::size_t k = 0; k < 3; ++k)
-      rgb[3 * p + k] = all[p * static_cast<std::size_t>(nc) +
-                           std::min<std::size_t>(k, static_cast<std::size_t>(nc) - 1)];
+      rgb[3 * p + k] = all[p * static_cast<std::size_t>(nc) + (nc >= 3 ? k : 0)];
   return rgb;
 }
 

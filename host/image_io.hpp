@@ -2,6 +2,7 @@
 // linear reference. Errors throw ImageIoError naming the file.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 
@@ -13,6 +14,11 @@ class ImageIoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// What the readers accept: twice the device's largest frame (4096 × 4096) in pixels, and grey,
+// grey with alpha, RGB or RGBA; a file declaring more is refused before its pixels are read.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 25;
+inline constexpr int kMaxImageChannels = 4;
 
 void write_png(const std::filesystem::path& file, const Image8& image);
 Image8 read_png(const std::filesystem::path& file);  // any 8-bit image OIIO reads; RGB kept

@@ -14,6 +14,37 @@ int line_of_offset(std::string_view text, std::size_t offset) {
   return line;
 }
 
+std::string json_pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::size_t find_outside_strings(std::string_view text, std::string_view token) {
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;  // the escaped character cannot end the string
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (text.compare(i, token.size(), token) == 0) {
+      return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
 namespace {
 
 class Locator {
@@ -45,32 +76,20 @@ class Locator {
     return s;
   }
 
-  static std::string escape(const std::string& key) {  // RFC 6901
-    std::string out;
-    for (char c : key) {
-      if (c == '~')
-        out += "~0";
-      else if (c == '/')
-        out += "~1";
-      else
-        out += c;
-    }
-    return out;
-  }
-
+  // Stops as soon as the target is found: the rest of the text cannot change the answer.
   void value(const std::string& ptr) {
     ws();
     if (found_ == npos && ptr == target_) found_ = i_;
-    if (i_ >= t_.size()) return;
+    if (found_ != npos || i_ >= t_.size()) return;
     const char c = t_[i_];
     if (c == '{') {
       ++i_;
       ws();
-      while (i_ < t_.size() && t_[i_] != '}') {
+      while (found_ == npos && i_ < t_.size() && t_[i_] != '}') {
         const std::string key = str();
         ws();
         ++i_;  // ':'
-        value(ptr + "/" + escape(key));
+        value(ptr + "/" + json_pointer_token(key));
         ws();
         if (i_ < t_.size() && t_[i_] == ',') ++i_;
         ws();
@@ -79,7 +98,7 @@ class Locator {
     } else if (c == '[') {
       ++i_;
       ws();
-      for (int k = 0; i_ < t_.size() && t_[i_] != ']'; ++k) {
+      for (int k = 0; found_ == npos && i_ < t_.size() && t_[i_] != ']'; ++k) {
         value(ptr + "/" + std::to_string(k));
         ws();
         if (i_ < t_.size() && t_[i_] == ',') ++i_;
@@ -104,7 +123,9 @@ class Locator {
 }  // namespace
 
 int line_of_pointer(std::string_view text, std::string_view pointer) {
-  // A pointer to a missing key names its parent's line (the closest thing that exists).
+  // A pointer to a missing key names its parent's line (the closest thing that exists). Each
+  // step drops one reference token (keys are escaped, so a "/" in a key is not one), so the
+  // steps are at most the document's depth, each one pass over the text at most.
   std::string p(pointer);
   while (true) {
     const std::size_t at = Locator(text, p).find();

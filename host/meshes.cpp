@@ -150,6 +150,9 @@ int int_param(const nlohmann::json& p, const char* key, int def, int lo, int hi)
   if (!p.contains(key)) return def;
   const auto& v = p[key];
   if (!v.is_number_integer()) throw MeshError(std::string(key) + ": expected an integer");
+  if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned>(hi))
+    throw MeshError(std::string(key) + ": value " + std::to_string(v.get<unsigned long long>()) +
+                    " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   const auto x = v.get<long long>();
   if (x < lo || x > hi)
     throw MeshError(std::string(key) + ": value " + std::to_string(x) + " out of range [" +

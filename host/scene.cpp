@@ -44,7 +44,8 @@ struct Reader {
       if (!ok.count(k)) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        fail(path + "/" + k, "unknown key \"" + k + "\" (allowed: " + list + ")");
+        fail(path + "/" + json_pointer_token(k),
+             "unknown key \"" + k + "\" (allowed: " + list + ")");
       }
     }
     for (const char* r : required)
@@ -66,6 +67,9 @@ struct Reader {
   int integer(const json& j, const std::string& path, int lo, int hi) const {
     if (!j.is_number_integer())
       fail(path, "expected an integer, got " + std::string(j.type_name()));
+    if (j.is_number_unsigned() && j.get<unsigned long long>() > static_cast<unsigned>(hi))
+      fail(path, "value " + std::to_string(j.get<unsigned long long>()) + " out of range [" +
+                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
     const auto v = j.get<long long>();
     if (v < lo || v > hi)
       fail(path, "value " + std::to_string(v) + " out of range [" + std::to_string(lo) + ", " +
@@ -75,7 +79,10 @@ struct Reader {
 
   std::string string(const json& j, const std::string& path) const {
     if (!j.is_string()) fail(path, "expected a string, got " + std::string(j.type_name()));
-    return j.get<std::string>();
+    std::string s = j.get<std::string>();
+    // A NUL would end the string where the operating system reads it (a mesh path).
+    if (s.find('\0') != std::string::npos) fail(path, "string contains a NUL character (\\u0000)");
+    return s;
   }
 
   bool boolean(const json& j, const std::string& path) const {
@@ -309,7 +316,8 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
   const auto path = [&stack](std::size_t upto) {
     std::string p;
     for (std::size_t i = 0; i < upto; ++i)
-      p += "/" + (stack[i].object ? stack[i].key : std::to_string(stack[i].index));
+      p += "/" +
+           (stack[i].object ? json_pointer_token(stack[i].key) : std::to_string(stack[i].index));
     return p;
   };
   const auto enter_element = [&stack] {
@@ -336,7 +344,7 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
           at = text.find(needle, at);
           if (at != std::string_view::npos) at = text.find(needle, at + 1);
           const int line = at == std::string_view::npos ? 0 : line_of_offset(text, at);
-          throw SceneError(file, line, parent + "/" + top.key,
+          throw SceneError(file, line, parent + "/" + json_pointer_token(top.key),
                            "duplicate key \"" + top.key + "\" (JSON would keep only the last one)");
         }
         break;
@@ -400,12 +408,12 @@ Scene parse_scene(std::string_view text, const std::string& file,
                      std::string("malformed JSON: ") + e.what());
   } catch (const json::exception& e) {
     // E.g. out_of_range 406 "number overflow parsing '1e999'": no position, but the message
-    // quotes the offending token; its first occurrence gives the line.
+    // quotes the offending token; its first occurrence outside a string gives the line.
     const std::string msg = e.what();
     const auto q0 = msg.find('\''), q1 = msg.rfind('\'');
     int line = 0;
     if (q0 != std::string::npos && q1 > q0) {
-      const auto at = text.find(msg.substr(q0 + 1, q1 - q0 - 1));
+      const auto at = find_outside_strings(text, msg.substr(q0 + 1, q1 - q0 - 1));
       if (at != std::string_view::npos) line = line_of_offset(text, at);
     }
     throw SceneError(file, line, "", "malformed JSON: " + msg);

@@ -145,5 +145,9 @@ int line_of_offset(std::string_view text, std::size_t offset);
 // 1-based line where the value at a JSON pointer starts, 0 if not found. `text` must be
 // valid JSON (the scene parser calls it only after nlohmann accepted the text).
 int line_of_pointer(std::string_view text, std::string_view pointer);
+// A key as one reference token of a JSON pointer (RFC 6901: "~" → "~0", "/" → "~1").
+std::string json_pointer_token(std::string_view key);
+// Offset of the first occurrence of token outside every JSON string of text, npos if none.
+std::size_t find_outside_strings(std::string_view text, std::string_view token);
 
 }  // namespace tp::host

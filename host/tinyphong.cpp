@@ -12,6 +12,8 @@
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +23,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -64,12 +67,23 @@ void add_depth_buffer_option(CLI::App* cmd, SceneOptions& o) {
                 "pixel: enough for a closed convex mesh, docs/TARGET.md)");
 }
 
+// An angle in degrees: finite, and small enough that its radians keep their precision.
+const CLI::Validator kAngle(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || std::abs(v) > 1e6)
+        return "an angle in degrees, finite and within ±1e6, got '" + text + "'";
+      return "";
+    },
+    "DEGREES");
+
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("scene", o.scene, "scene file (JSON), e.g. scenes/teapot.json")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--size", o.size, "override the resolution, WIDTHxHEIGHT (e.g. 1024x1024)");
-  cmd->add_option("--rotate", o.rotate_deg, "rotate the objects about the world y axis (degrees)");
+  cmd->add_option("--rotate", o.rotate_deg, "rotate the objects about the world y axis (degrees)")
+      ->check(kAngle);
   cmd->add_flag("--specular-only", o.specular_only,
                 "the specular part alone: ka = kd = 0 (Vlasic's specular-only images)");
 }
@@ -82,11 +96,15 @@ Scene load(const SceneOptions& o) {
   if (o.no_depth_buffer || o.small_part) s.depth_buffer = false;
   if (o.small_part) s.small_part_frame = true;
   if (!o.size.empty()) {
-    int w = 0, h = 0;
-    char x = 0;
     constexpr int kMax = static_cast<int>(tp::fw::kMaxDimension);  // the device's viewport
-    if (std::sscanf(o.size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
-        w <= 0 || h <= 0 || w > kMax || h > kMax)
+    const auto side = [](std::string_view text, int& v) {
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      return ec == std::errc() && end == text.data() + text.size() && v >= 1 && v <= kMax;
+    };
+    const std::string_view size = o.size;
+    const std::size_t x = size.find_first_of("xX");
+    int w = 0, h = 0;
+    if (x == std::string_view::npos || !side(size.substr(0, x), w) || !side(size.substr(x + 1), h))
       throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, each 1.." +
                                                std::to_string(kMax) + ", got '" + o.size + "'");
     s.width = w;
@@ -470,8 +488,10 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   record->add_option("--size", rec.options.size, "override the resolution, WIDTHxHEIGHT");
-  record->add_option("--rotate", rec.options.rotate_deg,
-                     "rotate the objects about the world y axis (degrees)");
+  record
+      ->add_option("--rotate", rec.options.rotate_deg,
+                   "rotate the objects about the world y axis (degrees)")
+      ->check(kAngle);
   record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
   add_budget_option(record, rec.options);
   add_depth_buffer_option(record, rec.options);

@@ -173,6 +173,8 @@ Result check_combination(const json& j, Command& c) {
       const bool has_n = c.n.has_value(), has_ab = c.a.has_value() || c.b.has_value();
       if (has_n == has_ab)
         return Result::failure("set_exponent needs either 'n' or both 'a' and 'b'");
+      if (has_n && *c.n != std::floor(*c.n))  // the device's exponent is an integer
+        return Result::failure("'n' must be a whole number");
       if (has_ab && (!c.a || !c.b)) return Result::failure("set_exponent needs both 'a' and 'b'");
       if (has_ab && !(*c.a < *c.b))
         return Result::failure("'a' must be less than 'b' (Kuijk-Blake f: a < b)");
@@ -238,12 +240,21 @@ ParseResult parse_control(const std::string& text) {
   Command c;
   c.type = string_to_control_type(type_name);
   if (c.type == ControlType::unknown)
-    return {std::nullopt, "unknown message type '" + type_name.substr(0, 64) + "'"};
+    return {std::nullopt, "unknown message type '" + clip_utf8(type_name, 64) + "'"};
   for (const auto& [k, v] : j.items())
     if (k != "type" && !allows(c.type, k))
-      return {std::nullopt, "unknown field '" + k.substr(0, 64) + "'"};
-  if (Result r = read_fields(j, c); !r.ok()) return {std::nullopt, r.message()};
-  return {std::move(c), ""};
+      return {std::nullopt, "unknown field '" + clip_utf8(k, 64) + "'", c.type};
+  if (Result r = read_fields(j, c); !r.ok()) return {std::nullopt, r.message(), c.type};
+  const ControlType type = c.type;
+  return {std::move(c), "", type};
+}
+
+std::string clip_utf8(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  std::size_t end = max_bytes;
+  // A continuation byte (10xxxxxx) at the cut belongs to a sequence that started before it.
+  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
+  return std::string(text.substr(0, end));
 }
 
 bool changes_loop_flags_only(ControlType t) {

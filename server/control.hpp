@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "firmware/types.hpp"
 #include "server/control_type.hpp"
@@ -46,7 +47,14 @@ struct Command {
 struct ParseResult {
   std::optional<Command> command;
   std::string error;  // set when command is empty
+  // The message's type when it names one the server knows, even when its fields are refused:
+  // the error reply names the request it answers.
+  ControlType type = ControlType::unknown;
 };
+
+// At most max_bytes of text, cut before a UTF-8 sequence that would not fit whole: a client's
+// text quoted in an error reply stays valid UTF-8.
+std::string clip_utf8(std::string_view text, std::size_t max_bytes);
 
 ParseResult parse_control(const std::string& text);
 

@@ -10,8 +10,12 @@ Response plain(const Request& req, http::status st, std::string body) {
   res.set(http::field::server, "tinyphong");
   res.set(http::field::content_type, "text/plain; charset=utf-8");
   res.keep_alive(req.keep_alive());
-  res.body() = std::move(body);
+  const std::size_t length = body.size();
+  // A response to HEAD has the headers of the GET response and no body (RFC 9110, 9.3.2): a body
+  // would be read as the start of the next response on a kept-alive connection.
+  if (req.method() != http::verb::head) res.body() = std::move(body);
   res.prepare_payload();
+  if (req.method() == http::verb::head) res.content_length(length);
   return res;
 }
 
@@ -60,6 +64,23 @@ Response route(const Request& req, const HostPolicy& policy) {
     return res;
   }
   return plain(req, http::status::not_found, "not found\n");
+}
+
+std::optional<Response> refusal_for_size(boost::beast::error_code ec) {
+  http::status st{};
+  if (ec == http::error::body_limit)
+    st = http::status::payload_too_large;
+  else if (ec == http::error::header_limit)
+    st = http::status::request_header_fields_too_large;
+  else
+    return std::nullopt;
+  Response res{st, 11};
+  res.set(http::field::server, "tinyphong");
+  res.set(http::field::content_type, "text/plain; charset=utf-8");
+  res.keep_alive(false);
+  res.body() = std::string(obsolete_reason(st)) + "\n";
+  res.prepare_payload();
+  return res;
 }
 
 std::string check_upgrade(const Request& req, const HostPolicy& policy, http::status& status) {

@@ -1,6 +1,7 @@
 // HTTP routing for the page and the WebSocket upgrade checks. Pure functions over Beast
 // messages so the tests can call them without a socket.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct HostPolicy {
 // traversal attempts: the target is compared as a whole, never joined to a directory);
 // 403 for a foreign Host; 405 for methods other than GET/HEAD.
 Response route(const Request& req, const HostPolicy& policy);
+
+// The answer to a request the parser refused for its size: 413 for a body over the limit, 431
+// for headers over it, each closing the connection (the rest of the request is not read). None
+// for any other read error (end of stream, timeout, a malformed request): the connection closes.
+std::optional<Response> refusal_for_size(boost::beast::error_code ec);
 
 // "" if a WebSocket upgrade to /ws may proceed, else the reason (answered with 403/404).
 std::string check_upgrade(const Request& req, const HostPolicy& policy, http::status& status);

@@ -1,5 +1,7 @@
 #include "server/http_session.hpp"
 
+#include <algorithm>
+
 #include <boost/asio/dispatch.hpp>
 
 #include "server/fail.hpp"
@@ -29,6 +31,11 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
     // (a browser keeps one open after loading the page), like end_of_stream.
     const bool idle = ec == beast::error::timeout && !parser_->got_some();
     if (!idle) fail(ec, "http read");
+    if (auto refusal = refusal_for_size(ec)) {  // a request too large still gets its answer
+      drain_after_send_ = true;
+      send(std::move(*refusal));
+      return;
+    }
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
     return;
@@ -68,9 +75,22 @@ void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
   if (close) {
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
+    if (drain_after_send_) drain(kDrainBytes);
     return;
   }
   do_read();
+}
+
+// Closing a socket with unread bytes sends a reset, which can destroy the answer before the
+// client reads it; so after refusing a request too large, read what the client still sends
+// until it closes, for at most kDrainBytes and the stream's timeout.
+void HttpSession::drain(std::size_t budget) {
+  if (budget == 0) return;
+  stream_.expires_after(std::chrono::seconds(2));
+  stream_.async_read_some(net::buffer(discard_),
+                          [self = shared_from_this(), budget](beast::error_code ec, std::size_t n) {
+                            if (!ec) self->drain(budget - std::min(budget, n));
+                          });
 }
 
 }  // namespace tp::server

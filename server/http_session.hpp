@@ -2,6 +2,7 @@
 // request at a time). Serves the embedded page; hands a WebSocket upgrade to /ws over to a
 // WsSession after the Host/Origin checks.
 #pragma once
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -30,12 +31,17 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void on_read(beast::error_code ec, std::size_t n);
   void send(Response res);
   void on_write(bool close, beast::error_code ec, std::size_t n);
+  void drain(std::size_t budget);
+
+  static constexpr std::size_t kDrainBytes = 1 << 20;
 
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   ServerContext& ctx_;
   std::optional<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<Response> res_;
+  bool drain_after_send_ = false;
+  std::array<char, 4096> discard_{};
 };
 
 }  // namespace tp::server

@@ -27,6 +27,10 @@ std::uint64_t get(std::span<const std::uint8_t> m, std::size_t at, int n) {
 
 }  // namespace
 
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 std::uint64_t fnv1a64(std::span<const std::uint8_t> bytes) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (std::uint8_t c : bytes) {
@@ -60,7 +64,7 @@ FramePtr encode_frame(FrameKind kind, std::uint32_t id, int width, int height,
   f->checksum = checksum;
   nlohmann::json c = nlohmann::json::object();
   for (const auto& [k, v] : counters) c[k] = v;
-  std::string block = c.dump();
+  std::string block = json_text(c);
   if (block.size() > kMaxCounterBytes) block = "{}";  // never: ~20 counters are ~600 bytes
   f->counters = counters;
   f->header_bytes = kHeaderBytes + block.size();

@@ -120,7 +120,7 @@ void RenderLoop::publish_state() {
             {"methods", methods},
             {"method_info", method_info},
             {"scenes", src_->scenes()}};
-  auto msg = std::make_shared<const std::string>(j.dump());
+  auto msg = std::make_shared<const std::string>(json_text(j));
   {
     std::lock_guard lk(m_);
     state_ = msg;
@@ -187,7 +187,7 @@ void RenderLoop::abandon_compare(const std::string& why) {
             {"total", compare_->methods.size()},
             {"aborted", why}};
   compare_.reset();
-  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), false);
+  hub_.broadcast_text(std::make_shared<const std::string>(json_text(j)), false);
 }
 
 // One step: the reference first, then one method, with the stream's settings restored after it.
@@ -225,7 +225,7 @@ void RenderLoop::publish_compare_progress(const char* method) {
             {"done", compare_->rows.size()},
             {"total", compare_->methods.size()}};
   if (method != nullptr) j["method"] = method;
-  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), true);
+  hub_.broadcast_text(std::make_shared<const std::string>(json_text(j)), true);
 }
 
 void RenderLoop::publish_comparison() {
@@ -253,7 +253,7 @@ void RenderLoop::publish_comparison() {
   json j = {{"type", "comparison"},   {"scene", s.scene},       {"width", s.width},
             {"height", s.height},     {"rotation", c.rotation}, {"renders", kCompareRenders},
             {"rows", std::move(rows)}};
-  hub_.broadcast_text(std::make_shared<const std::string>(j.dump()), false);
+  hub_.broadcast_text(std::make_shared<const std::string>(json_text(j)), false);
 }
 
 void RenderLoop::render_and_publish(double rotation) {
@@ -387,7 +387,7 @@ std::string RenderLoop::stats_message(std::size_t clients) {
     j["error"] = {{"frame_id", error_->frame_id},       {"pixels", error_->pixels},
                   {"correctness", error_->correctness}, {"mean_levels", error_->mean_levels},
                   {"max_levels", error_->max_levels},   {"psnr", error_->psnr}};
-  return j.dump();
+  return json_text(j);
 }
 
 }  // namespace tp::server

@@ -67,7 +67,7 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
 void WsSession::handle_text(const std::string& text) {
   ParseResult p = parse_control(text);
   if (!p.command) {
-    reply("", Result::failure(p.error));
+    reply(p.type == ControlType::unknown ? "" : to_string(p.type), Result::failure(p.error));
     return;
   }
   const Command& c = *p.command;
@@ -106,7 +106,7 @@ void WsSession::handle_ack(const Command& c) {
 void WsSession::reply(std::string_view request, const Result& outcome) {
   nlohmann::json j = {{"type", outcome.ok() ? "ok" : "error"}, {"request", request}};
   if (!outcome.ok()) j["error"] = outcome.message();
-  queue_text(std::make_shared<const std::string>(j.dump()), false);
+  queue_text(std::make_shared<const std::string>(json_text(j)), false);
 }
 
 void WsSession::offer_frame(FramePtr f) {

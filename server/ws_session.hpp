@@ -49,8 +49,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void on_read(beast::error_code ec, std::size_t n);
   void handle_text(const std::string& text);
   void handle_ack(const Command& c);
-  // {"type":"ok"|"error","request":request[,"error":…]}; request is "" when the message could
-  // not be parsed (its type is not known).
+  // {"type":"ok"|"error","request":request[,"error":…]}; request is "" when the message names
+  // no type the server knows (or is not JSON, or is binary).
   void reply(std::string_view request, const Result& outcome);
   void queue_text(TextPtr msg, bool droppable);
   void pump();

@@ -161,6 +161,24 @@ TEST(Commands, TypedErrorsChangeNothing) {
     std::vector<std::uint32_t> i(10, 0);
     return r.dev.upload_indices(250, i);
   });
+  // No gaps: a vertex slot below the count that no upload wrote held stale bytes (an index
+  // region's words, say) that the draw used unvalidated, trusting coordinate_bound (found by
+  // review, 2026-12-06). The same for index slots, and for empty uploads, which the stream
+  // decoder always treated as changing nothing.
+  expect_refused("vertices after a gap", Error::kIndexOutOfRange, [](Loaded& r) {
+    std::vector<Vertex> v(1, vertex({0, 0, 0}, {0, 0, 1}));
+    return r.dev.upload_vertices(static_cast<std::uint32_t>(r.mesh.positions.size()) + 1, v);
+  });
+  expect_refused("no vertices after a gap", Error::kIndexOutOfRange, [](Loaded& r) {
+    return r.dev.upload_vertices(static_cast<std::uint32_t>(r.mesh.positions.size()) + 1, {});
+  });
+  expect_refused("indices after a gap", Error::kIndexOutOfRange, [](Loaded& r) {
+    std::vector<std::uint32_t> i(3, 0);
+    return r.dev.upload_indices(static_cast<std::uint32_t>(r.mesh.indices.size()) + 1, i);
+  });
+  expect_refused("no indices after a gap", Error::kIndexOutOfRange, [](Loaded& r) {
+    return r.dev.upload_indices(static_cast<std::uint32_t>(r.mesh.indices.size()) + 3, {});
+  });
   expect_refused("draw count % 3", Error::kBadArgument, [](Loaded& r) {
     return r.dev.draw(DrawCmd{0, 4});
   });
@@ -192,6 +210,29 @@ TEST(Commands, BadIndexAndTransformOverflowRefuseTheDraw) {
   EXPECT_TRUE(before.memory == after.memory);
   EXPECT_TRUE(before.state == after.state);
   EXPECT_TRUE(before.counters == after.counters);
+}
+
+// An empty upload at or below the count changes nothing, typed or streamed: the draw still
+// ends at the indices uploaded (it raised the count to `first` before, making index slots no
+// upload wrote drawable, in typed calls only).
+TEST(Commands, EmptyUploadsChangeNothing) {
+  Loaded typed, streamed;
+  const auto nv = static_cast<std::uint32_t>(typed.mesh.positions.size());
+  const auto ni = static_cast<std::uint32_t>(typed.mesh.indices.size());
+  const Snapshot before = snapshot(typed);
+  EXPECT_EQ(typed.dev.upload_vertices(nv, {}), Error::kOk);
+  EXPECT_EQ(typed.dev.upload_indices(ni, {}), Error::kOk);
+  EXPECT_TRUE(before.state == snapshot(typed).state);
+  EXPECT_EQ(streamed.dev.execute(
+                std::vector<std::uint32_t>{command_header(Opcode::kUploadVertices, 2), nv, 0,
+                                           command_header(Opcode::kUploadIndices, 2), ni, 0}),
+            Error::kOk);
+  for (const Device* d : {&typed.dev, &streamed.dev}) {
+    EXPECT_EQ(d->state().vertex_count, nv);
+    EXPECT_EQ(d->state().index_count, ni);
+  }
+  EXPECT_EQ(typed.dev.draw(DrawCmd{ni, 3}), Error::kIndexOutOfRange);
+  EXPECT_EQ(streamed.dev.draw(DrawCmd{ni, 3}), Error::kIndexOutOfRange);
 }
 
 TEST(Commands, NoViewportRefusesDrawAndClear) {
@@ -338,6 +379,11 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
                         {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 1u << 31});
   expect_stream_refused("method 10 (unassigned)", Error::kUnknownMethod,
                         {command_header(Opcode::kSetMethod, 1), 10});
+  expect_stream_refused(
+      "vertices after a gap", Error::kIndexOutOfRange,
+      {command_header(Opcode::kUploadVertices, 8), 60, 1, 0, 0, 0, 0, 0, 1u << 30});
+  expect_stream_refused("no indices after a gap", Error::kIndexOutOfRange,
+                        {command_header(Opcode::kUploadIndices, 2), 250, 0});
   // A vertex upload whose second chunk holds a bad normal: the first 64 vertices must not land.
   std::vector<std::uint32_t> up{command_header(Opcode::kUploadVertices, 2 + 6 * 64), 0, 64};
   for (int i = 0; i < 64; ++i) up.insert(up.end(), {0, 0, 0, 0, 0, i == 63 ? 5u : (1u << 30)});

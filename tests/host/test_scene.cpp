@@ -59,7 +59,8 @@ INSTANTIATE_TEST_SUITE_P(
         Expected{"nan.json", 4, "", "malformed JSON"},
         Expected{"too_many_lights.json", 3, "/lights", "at most 16 lights, got 17"},
         Expected{"missing_mesh.json", 5, "/meshes/0/obj", "mesh file not found"},
-        Expected{"bad_obj.json", 6, "/meshes/1/obj", "missing vertex"},
+        Expected{"bad_obj.json", 6, "/meshes/1/obj",
+                 "bad.obj:6: face refers to vertex 7 but the file has 3"},
         Expected{"missing_key.json", 1, "", "missing key \"camera\""},
         // A repeated key would silently drop its first value; the line is the repeat's.
         Expected{"duplicate_key.json", 7, "/lights/1/position", "duplicate key \"position\""},

@@ -2,7 +2,8 @@
 # `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command and a
 # refused value each give a message naming the file (and the word offset and the device's
 # error for the stream errors) and a non-zero exit, as does a stream asking for more than
-# replay's memory limit; a good stream replays and hashes.
+# replay's memory limit and a file over the limit of a command file; a good stream replays and
+# hashes.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -49,6 +50,17 @@ expect refused-value "$work/wide.tpcmd" "wide.tpcmd: command set_viewport at wor
 # Three words asking for 2^24 vertices and 2^26 indices: refused before anything is allocated.
 printf '\x02\x00\x02\x00\x00\x00\x00\x01\x00\x00\x00\x04' > "$work/huge.tpcmd"
 expect huge-capacity "$work/huge.tpcmd" "huge.tpcmd: the stream's viewport and buffer capacity need [0-9]+ bytes of device memory, more than replay's limit"
+
+# A file over the limit of a command file (64 MiB; sparse, so it costs no disk), refused before
+# more of it is read: /dev/zero would otherwise be read until memory ran out. The files after it
+# are still replayed.
+truncate -s $(( (64 << 20) + 4 )) "$work/large.tpcmd"
+expect too-large "$work/large.tpcmd" "large.tpcmd: larger than 67108864 bytes \(the limit of a command file\)"
+status=0
+out=$("$tp" replay "$work/large.tpcmd" "$work/good.tpcmd" --hash 2>/dev/null) || status=$?
+if [ "$status" -eq 0 ] || ! grep -qE '^[0-9a-f]{16}  .*good.tpcmd$' <<<"$out"; then
+  echo "FAIL: after a file over the limit, the next was not replayed (status $status): $out"; fail=1
+fi
 
 [ $fail -eq 0 ] && echo "replay CLI errors: all as expected"
 exit $fail

@@ -3,9 +3,11 @@
 #pragma once
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -33,13 +35,19 @@ class ServerProcess {
  public:
   // stderr_path, when given, receives the server's stderr (a soak's thousands of expected
   // "websocket read: End of file" lines would otherwise flood the test's output).
-  explicit ServerProcess(std::vector<std::string> args, const std::string& stderr_path = "") {
+  // max_files > 0 limits the server's open descriptors (RLIMIT_NOFILE), to run it out of them.
+  explicit ServerProcess(std::vector<std::string> args, const std::string& stderr_path = "",
+                         rlim_t max_files = 0) {
     int fds[2];
     if (pipe(fds) != 0) throw std::runtime_error("pipe");
     pid_ = fork();
     if (pid_ == 0) {
       dup2(fds[1], 1);
       close(fds[0]);
+      if (max_files > 0) {
+        const rlimit lim{max_files, max_files};
+        setrlimit(RLIMIT_NOFILE, &lim);
+      }
       if (!stderr_path.empty()) {
         const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (err >= 0) dup2(err, 2);
@@ -294,6 +302,30 @@ inline int http_get(unsigned short port, const std::string& target, const std::s
   beast::error_code ec;
   http::read(s, b, res, ec);
   return ec ? 0 : res.result_int();
+}
+
+// Writes `request` on a fresh connection and reads until the server closes it or `timeout`
+// passes; returns what arrived (empty if the connection failed).
+inline std::string raw_exchange(unsigned short port, const std::string& request,
+                                std::chrono::milliseconds timeout = 5s) {
+  net::io_context ioc;
+  beast::tcp_stream s(ioc);
+  beast::error_code ec;
+  s.socket().connect({net::ip::make_address("127.0.0.1"), port}, ec);
+  if (ec) return "";
+  s.expires_after(timeout);
+  std::string got;
+  std::array<char, 4096> buf{};
+  const auto read_more = [&](auto&& self) -> void {
+    s.async_read_some(net::buffer(buf), [&](beast::error_code e, std::size_t n) {
+      got.append(buf.data(), n);
+      if (!e) self(self);
+    });
+  };
+  net::async_write(s, net::buffer(request), [&](beast::error_code, std::size_t) {});
+  read_more(read_more);
+  ioc.run_for(timeout + 1s);
+  return got;
 }
 
 }  // namespace tpt

@@ -297,3 +297,98 @@ TEST(ServerRobustness, ReferenceFramesArePairedWithDeviceFrames) {
   EXPECT_GT(s["error"]["mean_levels"].get<double>(), 1.0);
   EXPECT_LE(s["error"]["max_levels"].get<double>(), 2.0);
 }
+
+// Found by review (2026-12-06): an unknown key of 63 ASCII bytes and a two-byte character was
+// cut to 64 bytes inside the character; the reply's JSON text then threw on the invalid UTF-8,
+// and the exception ended the server for every client.
+TEST(ServerRobustness, ClientTextCutInsideACharacterKeepsTheServerUp) {
+  ServerProcess srv(pattern_args());
+  WsClient c(srv.port());
+  ASSERT_EQ(read_frames(c, 1, 10s), 1);
+  for (const std::string& msg :
+       {"{\"type\":\"get_state\",\"" + std::string(63, 'a') + "\xc3\xa9\":1}",
+        "{\"type\":\"" + std::string(63, 't') + "\xc3\xa9\"}",
+        "{\"type\":\"set_budget\",\"" + std::string(62, 'k') + "\xe2\x82\xac\":1}"}) {
+    c.send(msg);
+    json r = c.read_json("error", 10s);
+    ASSERT_TRUE(r.is_object()) << msg;
+    const std::string error = r["error"].get<std::string>();
+    EXPECT_EQ(error.find("\xc3"), std::string::npos) << error;  // cut before the character
+    EXPECT_EQ(error.find("\xe2"), std::string::npos) << error;
+  }
+  // An error for a type the server knows names it (it said "" for any refused field).
+  c.send_json({{"type", "set_budget"}, {"levels", 0}});
+  json r = c.read_json("error", 10s);
+  EXPECT_EQ(r["request"], "set_budget") << r.dump();
+  EXPECT_TRUE(srv.running());
+  EXPECT_EQ(read_frames(c, 2, 10s), 2);
+  EXPECT_EQ(http_get(srv.port(), "/"), 200);
+}
+
+// HEAD has no body, whatever the status: the 404's and 403's bodies were sent and read as the
+// start of the next response on a kept-alive connection.
+TEST(ServerRobustness, HeadAnswersCarryNoBody) {
+  ServerProcess srv(pattern_args());
+  const std::string host = "Host: " + srv.host() + "\r\n";
+  const std::string got = raw_exchange(
+      srv.port(), "HEAD /nope HTTP/1.1\r\n" + host + "\r\n" +
+                      "HEAD / HTTP/1.1\r\nHost: evil.example\r\n\r\n" +
+                      "GET /style.css HTTP/1.1\r\n" + host + "Connection: close\r\n\r\n");
+  const auto second = got.find("HTTP/1.1 403");
+  const auto third = got.find("HTTP/1.1 200");
+  ASSERT_EQ(got.rfind("HTTP/1.1 404", 0), 0u) << got;
+  ASSERT_NE(second, std::string::npos) << got;
+  ASSERT_NE(third, std::string::npos) << got;
+  // Each response's headers end right where the next response starts.
+  EXPECT_EQ(got.substr(second - 4, 4), "\r\n\r\n") << got;
+  EXPECT_EQ(got.substr(third - 4, 4), "\r\n\r\n") << got;
+  EXPECT_NE(got.find("Content-Length: 10\r\n"), std::string::npos) << got;  // "not found\n"
+}
+
+// Requests over the size limits were dropped without an answer.
+TEST(ServerRobustness, RequestsTooLargeGetTheirStatus) {
+  ServerProcess srv(pattern_args());
+  const std::string host = "Host: " + srv.host() + "\r\n";
+  const std::string body(200000, 'x');
+  const std::string post = raw_exchange(
+      srv.port(), "POST / HTTP/1.1\r\n" + host + "Content-Length: " + std::to_string(body.size()) +
+                      "\r\n\r\n" + body);
+  EXPECT_EQ(post.rfind("HTTP/1.1 413 Payload Too Large\r\n", 0), 0u) << post.substr(0, 200);
+  EXPECT_NE(post.find("Connection: close"), std::string::npos) << post.substr(0, 200);
+  const std::string header = raw_exchange(
+      srv.port(), "GET / HTTP/1.1\r\n" + host + "X-Big: " + std::string(9000, 'y') + "\r\n\r\n");
+  EXPECT_EQ(header.rfind("HTTP/1.1 431 Request Header Fields Too Large\r\n", 0), 0u)
+      << header.substr(0, 200);
+  EXPECT_EQ(http_get(srv.port(), "/"), 200);
+}
+
+// Out of descriptors, accepting failed at once and was retried at once: the listener spun on
+// a core and logged every attempt (11 MB of "Too many open files" in 3 s). Now it waits between
+// attempts, says so once, and serves again when connections close.
+TEST(ServerRobustness, OutOfDescriptorsTheListenerWaitsAndRecovers) {
+  const std::string log = ::testing::TempDir() + "tp_server_emfile.log";
+  ServerProcess srv(pattern_args(), log, 40);
+  net::io_context ioc;
+  std::vector<tcp::socket> held;
+  for (int i = 0; i < 80; ++i) {
+    tcp::socket s(ioc);
+    beast::error_code ec;
+    s.connect({net::ip::make_address("127.0.0.1"), srv.port()}, ec);
+    if (!ec) held.push_back(std::move(s));
+  }
+  std::this_thread::sleep_for(2s);
+  EXPECT_TRUE(srv.running());
+  std::ifstream in(log);
+  int accept_lines = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("accept", 0) == 0) ++accept_lines;
+  EXPECT_GE(accept_lines, 1);  // the limit was reached
+  EXPECT_LE(accept_lines, 2);  // and said once (twice if an episode ended and began again)
+  held.clear();
+  int status = 0;
+  for (int i = 0; i < 50 && status != 200; ++i) {
+    std::this_thread::sleep_for(100ms);
+    status = http_get(srv.port(), "/");
+  }
+  EXPECT_EQ(status, 200);
+}

@@ -7,6 +7,9 @@
 #include <string>
 #include <thread>
 
+#include <boost/beast/core/error.hpp>
+#include <nlohmann/json.hpp>
+
 #include "server/control.hpp"
 #include "server/http.hpp"
 #include "server/hub.hpp"
@@ -15,6 +18,7 @@
 #include "server/render_loop.hpp"
 
 using namespace tp::server;
+using nlohmann::json;
 
 namespace {
 std::span<const std::uint8_t> bytes(const std::string& s) {
@@ -95,6 +99,7 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_budget\",\"levels\":1.5}", "must be an integer"},
       {"{\"type\":\"set_exponent\",\"n\":0}", "'n' out of range"},
       {"{\"type\":\"set_exponent\",\"n\":10001}", "'n' out of range"},
+      {"{\"type\":\"set_exponent\",\"n\":1.5}", "'n' must be a whole number"},
       {"{\"type\":\"set_exponent\",\"n\":1e400}", "malformed JSON"},
       {"{\"type\":\"set_exponent\",\"n\":20,\"a\":0.1,\"b\":0.3}", "either 'n' or both"},
       {"{\"type\":\"set_exponent\",\"a\":0.1}", "both 'a' and 'b'"},
@@ -121,6 +126,29 @@ TEST(Control, RejectsEachMalformedMessageByName) {
   }
   ParseResult big = parse_control(std::string(kControlMessageLimit + 1, ' '));
   EXPECT_NE(big.error.find("too large"), std::string::npos);
+}
+
+TEST(Control, AnErrorNamesTheTypeWhenItIsKnown) {
+  EXPECT_EQ(parse_control("{\"type\":\"set_budget\",\"levels\":0}").type, ControlType::set_budget);
+  EXPECT_EQ(parse_control("{\"type\":\"set_method\",\"extra\":1}").type, ControlType::set_method);
+  EXPECT_EQ(parse_control("{\"type\":\"launch_missiles\"}").type, ControlType::unknown);
+  EXPECT_EQ(parse_control("{").type, ControlType::unknown);
+  EXPECT_EQ(parse_control("{\"type\":\"pause\"}").type, ControlType::pause);
+}
+
+TEST(Control, ClippedTextStaysWholeCharacters) {
+  EXPECT_EQ(clip_utf8("abc", 64), "abc");
+  EXPECT_EQ(clip_utf8("abcdef", 3), "abc");
+  EXPECT_EQ(clip_utf8("ab\xc3\xa9", 3), "ab");  // é would be cut after its first byte
+  EXPECT_EQ(clip_utf8("ab\xc3\xa9", 4), "ab\xc3\xa9");
+  EXPECT_EQ(clip_utf8("a\xe2\x82\xac", 3), "a");     // € (3 bytes) cut after two
+  EXPECT_EQ(clip_utf8("\xf0\x9f\x99\x82x", 2), "");  // a 4-byte character cut after two
+  // The error of a message whose unknown key is cut at 64 bytes is valid UTF-8 for the reply.
+  const ParseResult r =
+      parse_control("{\"type\":\"pause\",\"" + std::string(63, 'a') + "\xc3\xa9\":1}");
+  EXPECT_EQ(r.error, "unknown field '" + std::string(63, 'a') + "'");
+  EXPECT_NO_THROW((void)json_text(json{{"error", r.error}}));
+  EXPECT_EQ(json_text(json{{"e", "a\xc3"}}), "{\"e\":\"a\xef\xbf\xbd\"}");  // U+FFFD, no throw
 }
 
 TEST(Control, TypeNamesRoundTrip) {
@@ -202,6 +230,31 @@ TEST(Http, ServesOnlyTheEmbeddedAllowList) {
         "/..\\..\\etc\\passwd", "/web/../index.html", "//etc/passwd", "/index.html/..",
         "/%2E%2E/index.html", "/CMakeLists.txt", "/server/web/index.html", "index.html"})
     EXPECT_EQ(route(get(t), policy()).result(), http::status::not_found) << t;
+}
+
+TEST(Http, HeadAnswersHaveHeadersOnly) {
+  Request head = get("/nope");
+  head.method(http::verb::head);
+  const Response missing = route(head, policy());
+  EXPECT_EQ(missing.result(), http::status::not_found);
+  EXPECT_TRUE(missing.body().empty());
+  EXPECT_EQ(missing[http::field::content_length], "10");  // as the GET's "not found\n"
+  head.set(http::field::host, "evil.example:8080");
+  const Response foreign = route(head, policy());
+  EXPECT_EQ(foreign.result(), http::status::forbidden);
+  EXPECT_TRUE(foreign.body().empty());
+}
+
+TEST(Http, RequestsTooLargeAreAnsweredAndClosed) {
+  const auto body = refusal_for_size(http::error::body_limit);
+  ASSERT_TRUE(body.has_value());
+  EXPECT_EQ(body->result(), http::status::payload_too_large);
+  EXPECT_FALSE(body->keep_alive());
+  const auto header = refusal_for_size(http::error::header_limit);
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->result(), http::status::request_header_fields_too_large);
+  EXPECT_FALSE(refusal_for_size(http::error::end_of_stream).has_value());
+  EXPECT_FALSE(refusal_for_size(boost::beast::error::timeout).has_value());
 }
 
 TEST(Http, RefusesForeignHostsAndOrigins) {

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The CLI's own options on bad values: --size must be two whole numbers in 1..4096 joined by x
+# (sscanf's %d wrapped 4294967297 to 1 and ignored trailing text), --rotate a finite angle
+# within ±1e6 degrees (NaN, infinity and 1e308, whose radians overflow, drew a black image and
+# exited 0). Each refusal exits non-zero, names the option and writes no image; good values work.
+# Usage: cli_options_test.sh TINYPHONG SCENES_DIR
+set -euo pipefail
+tp=$1 scenes=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail=0
+
+# refused TEXT ARGS...: the command must exit non-zero, print TEXT and write no image.
+refused() {
+  local text=$1 out status=0
+  shift
+  rm -f "$work/out.png"
+  out=$("$tp" "$@" -o "$work/out.png" 2>&1) || status=$?
+  if [ "$status" -eq 0 ] || ! grep -qF -- "$text" <<<"$out" || [ -e "$work/out.png" ]; then
+    echo "FAIL: $* : status $status, output '$out'"; fail=1
+  else
+    echo "ok: $*"
+  fi
+}
+
+tri=$scenes/triangle.json
+for size in 4294967297x5 4294967808x4294967808 10x20junk 0x10 4097x10 10x -5x5 x 10x+5 " 10x10"; do
+  refused "--size: expected WIDTHxHEIGHT, each 1..4096, got '$size'" render "$tri" --size "$size"
+done
+for angle in nan -nan inf -inf 1e308 1000001; do
+  refused "--rotate: an angle in degrees, finite and within ±1e6, got '$angle'" \
+    reference "$tri" --rotate "$angle"
+  refused "--rotate: an angle in degrees" render "$tri" --rotate "$angle"
+  refused "--rotate: an angle in degrees" record "$tri" --rotate "$angle"
+done
+
+"$tp" render "$tri" --size 4096x16 --rotate -1e6 -o "$work/ok.png" >/dev/null ||
+  { echo "FAIL: --size 4096x16 --rotate -1e6 refused"; fail=1; }
+"$tp" render "$tri" --size 16X8 --rotate 30.5 -o "$work/ok.png" >/dev/null ||
+  { echo "FAIL: --size 16X8 --rotate 30.5 refused"; fail=1; }
+
+[ $fail -eq 0 ] && echo "CLI option checks: all as expected"
+exit $fail
