@@ -19,8 +19,8 @@ void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc
 }
 
 // Reads all pixels as `type`, keeping the first three channels (grey, with or without alpha, is
-// replicated). The size the file declares is checked before anything is allocated for it: a
-// 69-byte PNG can declare 20000 × 20000 pixels.
+// replicated). The size the file declares is checked before anything is allocated for it: a PNG
+// of some sixty bytes can declare 20000 × 20000 pixels.
 template <class T>
 std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type, int& w, int& h) {
   auto in = OIIO::ImageInput::open(file.string());

@@ -30,7 +30,9 @@ std::string at_line(const std::string& file, std::size_t line) {
   return file + ":" + std::to_string(line);
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
+// tinyobjloader separates words by spaces and tabs only; so does the scan, so that both see the
+// same records ("\fv 1 2 3" is none) and the same numbers ("1\v2" is one word, not a number).
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // The next whitespace-separated word of `line` from `pos` on ("" at the end).
 std::string_view next_word(std::string_view line, std::size_t& pos) {
@@ -111,7 +113,10 @@ void check_corner(std::string_view corner, const std::string& where, Tally& tall
     const bool may_be_empty = kind == 1 && slash != std::string_view::npos;  // "v//vn"
     if (!(field.empty() && may_be_empty)) {
       long long index = 0;
-      const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
+      // atoi, which tinyobjloader uses, takes one '+'; from_chars takes none.
+      const bool plus = field.size() > 1 && field[0] == '+' && field[1] != '+' && field[1] != '-';
+      const auto [ptr, ec] =
+          std::from_chars(field.data() + (plus ? 1 : 0), field.data() + field.size(), index);
       const std::string quoted = "'" + std::string(corner.substr(0, 32)) + "'";
       if (ec != std::errc() || ptr != field.data() + field.size())
         refuse(where, std::string("face corner ") + quoted + ": " + kIndexKinds[kind] +
@@ -157,7 +162,9 @@ bool check_line(std::string_view line, std::size_t line_number, const std::strin
     refuse(where, "line longer than " + std::to_string(kMaxObjLineBytes) +
                       " bytes (the limit of an OBJ line)");
   std::size_t pos = 0;
-  const std::string_view record = next_word(line, pos);
+  std::string_view record = next_word(line, pos);
+  // tinyobjloader reads a record only when a space or tab follows its keyword: a lone "v" is none.
+  if (pos == line.size()) record = {};
   if (record == "v" || record == "vn" || record == "vt") {
     Record read = check_numbers(record, line, pos, where);
     read.line = line_number;
@@ -213,6 +220,11 @@ std::string number_text(double v) {
 // scan's number to within float rounding, else the record's line is named.
 void compare_numbers(const std::vector<float>& parsed, const std::vector<Record>& scanned,
                      const char* record, const std::string& file) {
+  // Both read the same lines as records (is_blank, check_line); a difference in count would
+  // make every line named below wrong, so it is an error of its own.
+  if (parsed.size() != 3 * scanned.size())
+    refuse(file, std::string("the OBJ parser read ") + std::to_string(parsed.size() / 3) + " " +
+                     record + " records, the scan " + std::to_string(scanned.size()));
   for (std::size_t r = 0; r < scanned.size() && 3 * r + 2 < parsed.size(); ++r)
     for (int k = 0; k < scanned[r].count; ++k) {
       const double want = scanned[r].values[static_cast<std::size_t>(k)];

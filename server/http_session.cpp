@@ -75,7 +75,10 @@ void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
   if (close) {
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
-    if (drain_after_send_) drain(kDrainBytes);
+    if (drain_after_send_) {
+      stream_.expires_after(kDrainTime);  // one deadline for the whole drain, not one per read
+      drain(kDrainBytes);
+    }
     return;
   }
   do_read();
@@ -83,10 +86,9 @@ void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
 
 // Closing a socket with unread bytes sends a reset, which can destroy the answer before the
 // client reads it; so after refusing a request too large, read what the client still sends
-// until it closes, for at most kDrainBytes and the stream's timeout.
+// until it closes, for at most kDrainBytes and kDrainTime in all.
 void HttpSession::drain(std::size_t budget) {
   if (budget == 0) return;
-  stream_.expires_after(std::chrono::seconds(2));
   stream_.async_read_some(net::buffer(discard_),
                           [self = shared_from_this(), budget](beast::error_code ec, std::size_t n) {
                             if (!ec) self->drain(budget - std::min(budget, n));

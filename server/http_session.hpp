@@ -3,6 +3,7 @@
 // WsSession after the Host/Origin checks.
 #pragma once
 #include <array>
+#include <chrono>
 #include <memory>
 #include <optional>
 
@@ -34,6 +35,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void drain(std::size_t budget);
 
   static constexpr std::size_t kDrainBytes = 1 << 20;
+  static constexpr std::chrono::seconds kDrainTime{2};
 
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;

@@ -2,6 +2,7 @@
 // was accepted, misread, misreported or took hours before its fix; each must now be an error
 // naming the file, the line where there is one, and the problem. Inputs are generated here.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdint>
@@ -95,6 +96,13 @@ TEST(HostileScene, UnsignedIntegersAreReportedAsWritten) {
       "\"camera\": {\"type\": \"orthographic\"},\n\"lights\": []}";
   EXPECT_NE(scene_error(budget).problem().find("value 9223372036854775808 out of range"),
             std::string::npos);
+  const std::string generator =
+      "{\n\"meshes\": [{\"generator\": \"octa-sphere\",\n"
+      "\"params\": {\"subdivisions\": 18446744073709551615}}],\n"
+      "\"camera\": {\"type\": \"orthographic\"},\n\"lights\": []}";
+  EXPECT_NE(scene_error(generator).problem().find("value 18446744073709551615 out of range"),
+            std::string::npos)
+      << scene_error(generator).problem();
 }
 
 TEST(HostileScene, AStringWithANulIsRefused) {
@@ -131,8 +139,9 @@ TEST(HostileObj, FaceIndicesAreWholeIntegersInRange) {
     const std::string error = obj_error(kThreeVertices + faces);
     EXPECT_NE(error.find(message), std::string::npos) << faces << " -> " << error;
   }
-  // What stays accepted: a face before the vertices it names, relative indices, "v//vn".
+  // What stays accepted: a face before the vertices it names, relative indices, "v//vn", a '+'.
   EXPECT_EQ(obj_error("f 1 2 3\n" + kThreeVertices), "");
+  EXPECT_EQ(obj_error(kThreeVertices + "f +1 +2 +3\n"), "");
   EXPECT_EQ(obj_error(kThreeVertices + "f -3 -2 -1\n"), "");
   EXPECT_EQ(obj_error(kThreeVertices + "vn 0 0 1\nvt 0 0\nf 1//1 2/1/1 -1/-1/-1\n"), "");
 }
@@ -154,6 +163,22 @@ TEST(HostileObj, NumbersAreReadAsTheScanReadThem) {
             std::string::npos);
   EXPECT_NE(obj_error("v 0 0 -1e999\n").find("hostile.obj:1: v z '-1e999' is not a finite number"),
             std::string::npos);
+}
+
+// The scan and tinyobjloader see the same records: words end at spaces and tabs only, and a
+// keyword alone on its line is no record (the scan counted "v" and "\fv 0 0 0" as vertices that
+// tinyobjloader did not, so its later checks named the wrong lines).
+TEST(HostileObj, TheScanSeesTheRecordsTheParserSees) {
+  EXPECT_EQ(obj_error("v\n" + kThreeVertices + "f 1 2 3\n"), "");
+  EXPECT_NE(obj_error("\fv 0 0 0\n" + kThreeVertices + "f 1 2 4\n")
+                .find("hostile.obj:5: face refers to vertex 4 but the file has 3"),
+            std::string::npos);
+  EXPECT_NE(obj_error("v 1\v2 0 0\n").find("hostile.obj:1: v x '1\v2' is not a number"),
+            std::string::npos);
+  const std::string normals = obj_error(kThreeVertices + "vn\nvn 0 0 1\nf 1//2 2//2 3//2\n");
+  EXPECT_NE(normals.find("hostile.obj:6: face refers to normal 2 but the file has 1"),
+            std::string::npos)
+      << normals;
 }
 
 TEST(HostileObj, AZeroNormalIsReportedAtItsRecord) {
@@ -196,14 +221,15 @@ std::string chunk(const std::string& type, const std::string& data) {
 
 }  // namespace
 
-// A 60-byte PNG declaring 20000 × 20000 RGB pixels had the reader allocate 1.2 GB before libpng
-// found no pixel data; the declared size is now refused first.
+// A 57-byte PNG declaring 20000 × 20000 RGB pixels had the reader allocate their 1.2 GB before
+// libpng found no pixel data; the declared size is now refused first.
 TEST(HostileImage, ADeclaredSizeBeyondTheLimitIsRefusedBeforeReading) {
   std::string ihdr = big_endian(20000) + big_endian(20000);
   ihdr += std::string{8, 2, 0, 0, 0};  // 8 bits, RGB, deflate, adaptive filter, no interlace
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
                           chunk("IDAT", "") + chunk("IEND", "");
-  const fs::path file = fs::path(::testing::TempDir()) / "tp_declares_20000.png";
+  const fs::path file =
+      fs::path(::testing::TempDir()) / ("tp_declares_20000_" + std::to_string(getpid()) + ".png");
   std::ofstream(file, std::ios::binary) << png;
   try {
     (void)read_png(file);
@@ -233,7 +259,8 @@ TEST(HostileImage, GreyWithAlphaIsGrey) {
   ihdr += std::string{8, 4, 0, 0, 0};  // 8 bits, grey with alpha
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
                           chunk("IDAT", zlib) + chunk("IEND", "");
-  const fs::path file = fs::path(::testing::TempDir()) / "tp_grey_alpha.png";
+  const fs::path file =
+      fs::path(::testing::TempDir()) / ("tp_grey_alpha_" + std::to_string(getpid()) + ".png");
   std::ofstream(file, std::ios::binary) << png;
   const Image8 im = read_png(file);
   EXPECT_EQ(im.width, 1);

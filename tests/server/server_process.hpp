@@ -304,8 +304,9 @@ inline int http_get(unsigned short port, const std::string& target, const std::s
   return ec ? 0 : res.result_int();
 }
 
-// Writes `request` on a fresh connection and reads until the server closes it or `timeout`
-// passes; returns what arrived (empty if the connection failed).
+// Writes `request` on a fresh connection, then ends its sending side (the server reads an end of
+// stream), and reads until the server closes the connection or `timeout` passes; returns what
+// arrived (empty if the connection failed).
 inline std::string raw_exchange(unsigned short port, const std::string& request,
                                 std::chrono::milliseconds timeout = 5s) {
   net::io_context ioc;
@@ -322,7 +323,10 @@ inline std::string raw_exchange(unsigned short port, const std::string& request,
       if (!e) self(self);
     });
   };
-  net::async_write(s, net::buffer(request), [&](beast::error_code, std::size_t) {});
+  net::async_write(s, net::buffer(request), [&](beast::error_code, std::size_t) {
+    beast::error_code ignored;
+    s.socket().shutdown(tcp::socket::shutdown_send, ignored);
+  });
   read_more(read_more);
   ioc.run_for(timeout + 1s);
   return got;

@@ -345,7 +345,8 @@ TEST(ServerRobustness, HeadAnswersCarryNoBody) {
   EXPECT_NE(got.find("Content-Length: 10\r\n"), std::string::npos) << got;  // "not found\n"
 }
 
-// Requests over the size limits were dropped without an answer.
+// Requests over the size limits were dropped without an answer. The client ends its sending
+// side after the request, so the server's drain ends at that end of stream, not its deadline.
 TEST(ServerRobustness, RequestsTooLargeGetTheirStatus) {
   ServerProcess srv(pattern_args());
   const std::string host = "Host: " + srv.host() + "\r\n";
@@ -366,7 +367,8 @@ TEST(ServerRobustness, RequestsTooLargeGetTheirStatus) {
 // a core and logged every attempt (11 MB of "Too many open files" in 3 s). Now it waits between
 // attempts, says so once, and serves again when connections close.
 TEST(ServerRobustness, OutOfDescriptorsTheListenerWaitsAndRecovers) {
-  const std::string log = ::testing::TempDir() + "tp_server_emfile.log";
+  const std::string log =
+      ::testing::TempDir() + "tp_server_emfile_" + std::to_string(getpid()) + ".log";
   ServerProcess srv(pattern_args(), log, 40);
   net::io_context ioc;
   std::vector<tcp::socket> held;
@@ -385,10 +387,12 @@ TEST(ServerRobustness, OutOfDescriptorsTheListenerWaitsAndRecovers) {
   EXPECT_GE(accept_lines, 1);  // the limit was reached
   EXPECT_LE(accept_lines, 2);  // and said once (twice if an episode ended and began again)
   held.clear();
-  int status = 0;
-  for (int i = 0; i < 50 && status != 200; ++i) {
+  const std::string get = "GET / HTTP/1.1\r\nHost: " + srv.host() + "\r\nConnection: close\r\n\r\n";
+  bool served = false;
+  for (int i = 0; i < 50 && !served; ++i) {
     std::this_thread::sleep_for(100ms);
-    status = http_get(srv.port(), "/");
+    served = raw_exchange(srv.port(), get, 2s).rfind("HTTP/1.1 200 OK\r\n", 0) == 0;
   }
-  EXPECT_EQ(status, 200);
+  EXPECT_TRUE(served);
+  std::filesystem::remove(log);
 }
