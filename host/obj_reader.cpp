@@ -60,8 +60,13 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
   for (int k = 0;; ++k) {
     const std::string_view token = next_word(line, pos);
     if (token.empty() || token[0] == '#') return read;
-    const std::string field = k < 4 ? kFields[k] : "value " + std::to_string(k + 1);
-    const std::string quoted = "'" + std::string(token.substr(0, 32)) + "'";
+    // The record, field and token for an error; built only when there is one (a mesh has
+    // millions of numbers).
+    const auto named = [&] {
+      return std::string(record) + " " +
+             (k < 4 ? std::string(kFields[k]) : "value " + std::to_string(k + 1)) + " '" +
+             std::string(token.substr(0, 32)) + "'";
+    };
     double value = 0;
     // from_chars takes no '+'; one sign at most ("+-1" is no number).
     const char* begin =
@@ -71,16 +76,14 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     const auto [ptr, ec] = std::from_chars(begin, end, value);
     if (ec == std::errc::result_out_of_range) {  // overflow (1e999) or underflow (1e-400)
       const bool overflow = std::isinf(std::strtod(std::string(token).c_str(), nullptr));
-      refuse(where, std::string(record) + " " + field + " " + quoted +
-                        (overflow ? " is not a finite number" : " is too small for a double"));
+      refuse(where,
+             named() + (overflow ? " is not a finite number" : " is too small for a double"));
     }
-    if (ec != std::errc() || ptr != end)
-      refuse(where, std::string(record) + " " + field + " " + quoted + " is not a number");
-    if (!std::isfinite(value))
-      refuse(where, std::string(record) + " " + field + " " + quoted + " is not a finite number");
+    if (ec != std::errc() || ptr != end) refuse(where, named() + " is not a number");
+    if (!std::isfinite(value)) refuse(where, named() + " is not a finite number");
     if (std::abs(value) > std::numeric_limits<float>::max())
-      refuse(where, std::string(record) + " " + quoted +
-                        " is beyond the single-precision range OBJ numbers are read in");
+      refuse(where, std::string(record) + " '" + std::string(token.substr(0, 32)) +
+                        "' is beyond the single-precision range OBJ numbers are read in");
     if (k < 3) read.values[static_cast<std::size_t>(read.count++)] = value;
   }
 }
@@ -90,9 +93,9 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
 // may name a vertex defined further down, so positive indices are checked at the end).
 struct Tally {
   std::size_t positions = 0, triangles = 0;
-  std::array<std::size_t, 3> defined{};   // "v", "vt", "vn" records so far
-  std::array<long long, 3> largest{};     // largest positive index per kind
-  std::array<std::string, 3> largest_at;  // where it first appeared
+  std::array<std::size_t, 3> defined{};       // "v", "vt", "vn" records so far
+  std::array<long long, 3> largest{};         // largest positive index per kind
+  std::array<std::size_t, 3> largest_line{};  // the line where it first appeared
   std::vector<Record> vertices, normals;
 };
 
@@ -101,7 +104,8 @@ constexpr const char* kIndexKinds[] = {"vertex", "texture coordinate", "normal"}
 // One corner of a face, "v", "v/vt", "v//vn" or "v/vt/vn": every index a whole integer, not zero,
 // a negative one within the records before it (OBJ: -1 is the last so far). tinyobjloader reads
 // them with atoi, which wraps or stops silently, so they are checked here.
-void check_corner(std::string_view corner, const std::string& where, Tally& tally) {
+void check_corner(std::string_view corner, std::size_t line, const std::string& where,
+                  Tally& tally) {
   std::size_t kind = 0;
   for (std::size_t start = 0;; ++kind) {
     const std::size_t slash = corner.find('/', start);
@@ -117,20 +121,20 @@ void check_corner(std::string_view corner, const std::string& where, Tally& tall
       const bool plus = field.size() > 1 && field[0] == '+' && field[1] != '+' && field[1] != '-';
       const auto [ptr, ec] =
           std::from_chars(field.data() + (plus ? 1 : 0), field.data() + field.size(), index);
-      const std::string quoted = "'" + std::string(corner.substr(0, 32)) + "'";
+      // "face corner '…': vertex index", built only for an error.
+      const auto named = [&] {
+        return "face corner '" + std::string(corner.substr(0, 32)) + "': " + kIndexKinds[kind] +
+               " index";
+      };
       if (ec != std::errc() || ptr != field.data() + field.size())
-        refuse(where, std::string("face corner ") + quoted + ": " + kIndexKinds[kind] +
-                          " index is not an integer");
-      if (index == 0)
-        refuse(where, std::string("face corner ") + quoted + ": " + kIndexKinds[kind] +
-                          " index 0 (OBJ counts from 1)");
+        refuse(where, named() + " is not an integer");
+      if (index == 0) refuse(where, named() + " 0 (OBJ counts from 1)");
       if (index < 0 && static_cast<unsigned long long>(-(index + 1)) >= tally.defined[kind])
-        refuse(where, std::string("face corner ") + quoted + ": " + kIndexKinds[kind] + " index " +
-                          std::to_string(index) + " but only " +
+        refuse(where, named() + " " + std::to_string(index) + " but only " +
                           std::to_string(tally.defined[kind]) + " defined before it");
       if (index > tally.largest[kind]) {
         tally.largest[kind] = index;
-        tally.largest_at[kind] = where;
+        tally.largest_line[kind] = line;
       }
     }
     if (slash == std::string_view::npos) return;
@@ -139,12 +143,12 @@ void check_corner(std::string_view corner, const std::string& where, Tally& tall
 }
 
 // Checks a face's corners; returns the triangles it makes once triangulated: corners - 2.
-std::size_t check_face(std::string_view line, std::size_t pos, const std::string& where,
-                       Tally& tally) {
+std::size_t check_face(std::string_view line, std::size_t pos, std::size_t line_number,
+                       const std::string& where, Tally& tally) {
   std::size_t corners = 0;
   for (std::string_view w = next_word(line, pos); !w.empty() && w[0] != '#';
        w = next_word(line, pos)) {
-    check_corner(w, where, tally);
+    check_corner(w, line_number, where, tally);
     ++corners;
   }
   return corners >= 3 ? corners - 2 : 0;
@@ -177,7 +181,7 @@ bool check_line(std::string_view line, std::size_t line_number, const std::strin
     refuse(where,
            "more than " + std::to_string(kMaxMeshVertices) + " vertices (the limit of a mesh)");
   if (record == "f") {
-    tally.triangles += check_face(line, pos, where, tally);
+    tally.triangles += check_face(line, pos, line_number, where, tally);
     if (tally.triangles > kMaxMeshTriangles)
       refuse(where,
              "more than " + std::to_string(kMaxMeshTriangles) + " triangles (the limit of a mesh)");
@@ -201,10 +205,10 @@ std::string scan_lines(std::string_view text, const std::string& file, Tally& ta
   }
   for (std::size_t kind = 0; kind < 3; ++kind)
     if (static_cast<unsigned long long>(tally.largest[kind]) > tally.defined[kind])
-      refuse(tally.largest_at[kind], std::string("face refers to ") + kIndexKinds[kind] + " " +
-                                         std::to_string(tally.largest[kind]) +
-                                         " but the file has " +
-                                         std::to_string(tally.defined[kind]));
+      refuse(at_line(file, tally.largest_line[kind]),
+             std::string("face refers to ") + kIndexKinds[kind] + " " +
+                 std::to_string(tally.largest[kind]) + " but the file has " +
+                 std::to_string(tally.defined[kind]));
   return for_parser;
 }
 

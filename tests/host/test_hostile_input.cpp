@@ -14,21 +14,14 @@
 #include "host/image_io.hpp"
 #include "host/meshes.hpp"
 #include "host/scene.hpp"
+#include "reader_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace tp::host;
 
 namespace {
 
-SceneError scene_error(const std::string& text) {
-  try {
-    parse_scene(text, "hostile.json", TP_HOST_TEST_DATA);
-  } catch (const SceneError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "the scene loaded";
-  return SceneError("", -1, "", "");
-}
+SceneError scene_error(const std::string& text) { return test::scene_error(text, "hostile.json"); }
 
 // A valid scene whose camera object also holds `extra` (a member, or "" for none); the camera's
 // members start on line 3.
@@ -38,14 +31,7 @@ std::string scene_with_camera_member(const std::string& extra) {
          (extra.empty() ? "" : ",\n" + extra) + "},\n\"lights\": []}";
 }
 
-std::string obj_error(const std::string& text) {
-  try {
-    parse_obj(text, "hostile.obj");
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string obj_error(const std::string& text) { return test::obj_error(text, "hostile.obj"); }
 
 const std::string kThreeVertices = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n";
 

@@ -8,21 +8,14 @@
 #include <string>
 
 #include "host/scene.hpp"
+#include "reader_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace tp::host;
 
 namespace {
 
-// The message of the MeshError parse_obj throws for `text` ("" if it loads).
-std::string obj_error(const std::string& text, const std::string& file = "big.obj") {
-  try {
-    parse_obj(text, file);
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string obj_error(const std::string& text) { return test::obj_error(text, "big.obj"); }
 
 std::string repeat(const std::string& line, std::size_t times) {
   std::string out;
@@ -31,15 +24,7 @@ std::string repeat(const std::string& line, std::size_t times) {
   return out;
 }
 
-SceneError scene_error(const std::string& text) {
-  try {
-    parse_scene(text, "limits.json", TP_HOST_TEST_DATA);
-  } catch (const SceneError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "the scene loaded";
-  return SceneError("", -1, "", "");
-}
+SceneError scene_error(const std::string& text) { return test::scene_error(text, "limits.json"); }
 
 // A scene around the given meshes (JSON array elements).
 std::string scene_with_meshes(const std::string& meshes) {
