@@ -36,6 +36,11 @@ void Hub::publish_frame(FramePtr f) {
   for (auto& s : targets) s->offer_frame(f);
 }
 
+void Hub::forget_reference() {
+  std::lock_guard lk(m_);
+  latest_reference_.reset();
+}
+
 void Hub::broadcast_text(TextPtr msg, bool droppable) {
   std::vector<std::shared_ptr<WsSession>> targets;
   {

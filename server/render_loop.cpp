@@ -151,7 +151,10 @@ bool RenderLoop::apply_pending() {
     {
       std::lock_guard lk(m_);  // before the worker can see the job below
       reference_on_ = flags_.reference;
-      if (!flags_.reference) error_.reset();
+      if (!flags_.reference) {
+        error_.reset();
+        hub_.forget_reference();
+      }
     }
     if (outcome.ok()) {
       changed = true;
@@ -360,13 +363,12 @@ void RenderLoop::ref_run() {
     Image ref = job.task();
     ErrorStats e = compare_images(job.device, ref);
     e.frame_id = job.frame_id;
-    {
-      std::lock_guard lk(m_);
-      if (!reference_on_) continue;  // switched off meanwhile
-      error_ = e;
-    }
-    hub_.publish_frame(
-        encode_frame(FrameKind::reference, job.frame_id, ref.width, ref.height, ref.rgb, 0));
+    FramePtr frame =
+        encode_frame(FrameKind::reference, job.frame_id, ref.width, ref.height, ref.rgb, 0);
+    std::lock_guard lk(m_);        // held while publishing: switching off cannot come in between
+    if (!reference_on_) continue;  // switched off meanwhile
+    error_ = e;
+    hub_.publish_frame(std::move(frame));
   }
 }
 

@@ -26,9 +26,12 @@ function fnv1a64Rgba(rgba) {
   return hi.toString(16).padStart(8, '0') + lo.toString(16).padStart(8, '0');
 }
 
+const kFrameVersion = 2; // protocol.hpp's kFrameVersion: a header of another version is refused
+
 function parseHeader(buf) {
   const v = new DataView(buf);
   if (buf.byteLength < 40 || v.getUint32(0, false) !== 0x54504642) return null; // "TPFB"
+  if (v.getUint16(4, true) !== kFrameVersion) return null;
   const h = {
     version: v.getUint16(4, true), kind: v.getUint16(6, true), id: v.getUint32(8, true),
     width: v.getUint16(12, true), height: v.getUint16(14, true), format: v.getUint16(16, true),
@@ -99,6 +102,7 @@ function onDevice(h) {
 }
 
 function onReference(h) {
+  if (tp.state && !tp.state.reference) return ack(h.id, 'reference'); // sent before "off" arrived
   paint($('ref'), h.width, h.height, h.rgb);
   tp.refsPainted++;
   ack(h.id, 'reference');
@@ -154,6 +158,7 @@ function drawProbe(dev, ref) {
 let ws = null, attempt = 0;
 function send(msg) {
   if (ws && ws.readyState === WebSocket.OPEN) ws.send(JSON.stringify(msg));
+  else if (msg.type !== 'ack') log('not connected: ' + msg.type + ' not sent');
 }
 function ack(id, kind) { send({ type: 'ack', id, kind }); }
 
@@ -170,8 +175,9 @@ function connect() {
   ws.onmessage = (ev) => {
     if (typeof ev.data === 'string') return onText(JSON.parse(ev.data));
     const h = parseHeader(ev.data);
-    if (!h) return log('bad frame message');
+    if (!h) return log('bad frame message (' + ev.data.byteLength + ' bytes): not shown');
     if (h.kind === 0) onDevice(h); else if (h.kind === 1) onReference(h);
+    else log('frame of unknown kind ' + h.kind + ': not shown');
   };
   ws.onclose = (ev) => {
     tp.connected = false;
@@ -192,6 +198,10 @@ function showCompareProgress(m) {
     : m.done === 0 ? `reference… (${m.total} methods)` : `${m.done} / ${m.total} (${m.method})`;
 }
 
+// Text from a message put into markup (the chart, the table) is escaped: method names and the
+// device's error texts are the server's, but an error text can hold '<' ("<scene>").
+const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+
 function niceBelow(v) { const e = 10 ** Math.floor(Math.log10(v)); return Math.max(...[1, 2, 5].map((k) => k * e).filter((x) => x <= v)); }
 function niceAbove(v) { const e = 10 ** Math.floor(Math.log10(v)); return Math.min(...[1, 2, 5, 10].map((k) => k * e).filter((x) => x >= v)); }
 
@@ -205,7 +215,6 @@ function comparisonChart(rows) {
   const y0 = Math.floor(Math.min(...ys) / step) * step, y1 = Math.ceil(Math.max(...ys) / step) * step + step / 2;
   const X = (t) => L + pw * (Math.log10(t) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo));
   const Y = (v) => T + ph * (y1 - v) / (y1 - y0);
-  const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
   const out = [`<svg id="chart" xmlns="http://www.w3.org/2000/svg" width="${W}" height="${H}" viewBox="0 0 ${W} ${H}" font-size="11">`,
     `<rect width="${W}" height="${H}" fill="#111"/>`];
   for (let d = 10 ** Math.floor(Math.log10(lo)); d <= hi * 1.0001; d *= 10)
@@ -256,8 +265,8 @@ function showComparison(m) {
   tp.comparison = m;
   $('compare-progress').textContent = `${m.rows.length} methods, ${m.scene} ${m.width}×${m.height}`;
   const rows = m.rows.map((r) => r.error
-    ? `<tr data-method="${r.method}"><td>${r.method}</td><td colspan="4">${r.error}</td></tr>`
-    : `<tr data-method="${r.method}"><td>${r.method}</td><td>${r.correctness.toFixed(5)}</td><td>${r.max_levels}</td>` +
+    ? `<tr data-method="${esc(r.method)}"><td>${esc(r.method)}</td><td colspan="4">${esc(r.error)}</td></tr>`
+    : `<tr data-method="${esc(r.method)}"><td>${esc(r.method)}</td><td>${r.correctness.toFixed(5)}</td><td>${r.max_levels}</td>` +
       `<td>${r.ms.toFixed(2)}</td><td>${r.time_ratio == null ? '—' : r.time_ratio.toFixed(2)}</td></tr>`).join('');
   $('compare-table').innerHTML = '<thead><tr><th>method</th><th>colour correctness</th><th>max levels</th><th>ms</th><th>time / Gouraud</th></tr></thead>' +
     `<tbody>${rows}</tbody>`;
@@ -283,18 +292,75 @@ function onText(m) {
   if (m.type === 'ok' || m.type === 'error') {
     tp.replies.push(m);
     if (tp.replies.length > 100) tp.replies.shift();
-    if (m.type === 'error') log('error' + (m.request ? ' (' + m.request + ')' : '') + ': ' + m.error);
-    else if (m.request !== 'ack') log('ok: ' + m.request);
+    if (m.type === 'error') {
+      log('error' + (m.request ? ' (' + m.request + ')' : '') + ': ' + m.error);
+      restoreRefused(m.request);
+    } else log('ok: ' + m.request);
   }
 }
 
-const toHex = (c) => '#' + c.map((v) => Math.round(Math.min(1, v) * 255).toString(16).padStart(2, '0')).join('');
+// A refused message changes nothing on the server, and the server sends no state for it: the
+// controls it came from show the server's values again, focused or not, so that what the page
+// shows is what the device uses.
+const controlsOf = {
+  set_scene: ['scene'], set_method: ['method'], set_budget: ['budget'],
+  set_resolution: ['width', 'height'], set_exponent: ['n', 'a', 'b', 'exp'],
+  set_material: ['ka', 'kd', 'ks', 'color'], animate: ['animate'], pause: ['paused'],
+  reference: ['reference'], specular_only: ['specular_only'],
+  set_light: ['lights'], remove_light: ['lights'], add_light: ['lights'],
+};
+function restoreRefused(request) {
+  const s = tp.state, ids = controlsOf[request];
+  if (!s || !ids) return;
+  for (const id of ids) {
+    if (id === 'lights') renderLights(s.lights, true);
+    else if (id === 'exp') showExponentChoice(s, true);
+    else setValue(id, controlValue(s, id), true);
+  }
+}
+
+const toHex = (c) => '#' + c.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255).toString(16).padStart(2, '0')).join('');
 const fromHex = (s) => [1, 3, 5].map((i) => parseInt(s.slice(i, i + 2), 16) / 255);
 
-function setValue(id, v) {
+// A colour picker holds 8 bits per channel in [0, 1], a light's colour goes to 4 and the server
+// keeps doubles. A light's colour is shown as its hue (the colour over its largest channel) and
+// that channel as an intensity; what is sent back is the server's own colour wherever the user
+// changed neither, so "set" to move a light neither cuts a colour above 1 nor rounds it to 8 bits.
+function splitColour(c) {
+  const scale = Math.max(...c);
+  return { hex: toHex(scale > 0 ? c.map((v) => v / scale) : c), scale };
+}
+function joinColour(hex, scale, original) {
+  const was = splitColour(original);
+  if (hex !== was.hex) return fromHex(hex).map((v) => v * scale);
+  if (scale === was.scale) return original;
+  return was.scale > 0 ? original.map((v) => (v / was.scale) * scale) : fromHex(hex).map((v) => v * scale);
+}
+// The material's colour is within [0, 1]: the picker shows it; unchanged, the server's is sent.
+const materialColour = (hex, original) => (hex === toHex(original) ? original : fromHex(hex));
+
+function setValue(id, v, force = false) {
   const el = $(id);
-  if (document.activeElement === el) return; // do not fight the user's typing
+  if (!force && document.activeElement === el) return; // do not fight the user's typing
   if (el.type === 'checkbox') el.checked = !!v; else el.value = v;
+}
+
+// What a control shows of a state message.
+function controlValue(s, id) {
+  if (id === 'a' || id === 'b') return s.use_ab ? Number(s[id]).toFixed(4) : $(id).value;
+  if (id === 'color') return toHex(s.color);
+  return s[id];
+}
+
+// The n / (a, b) choice follows the server when the server's choice changes (or on a refusal),
+// not on every state: another client's change of the lights must not undo the user's choice.
+let shownUseAb = null;
+function showExponentChoice(s, force = false) {
+  for (const id of ['n', 'a', 'b']) setValue(id, controlValue(s, id), force);
+  if (!force && s.use_ab === shownUseAb) return;
+  shownUseAb = s.use_ab;
+  $('use-ab').checked = s.use_ab;
+  $('use-n').checked = !s.use_ab;
 }
 
 function fillSelect(id, values, current) {
@@ -318,43 +384,56 @@ function describeMethods(s) {
   $('method-about').textContent = cur ? `${cur.description}; ${cur.capabilities}` : '';
 }
 
+// The reference and difference views go blank when the comparison is off: a picture left there
+// would look live while the device view moves on.
+function clearComparison() {
+  lastRef = null;
+  $('ref-id').textContent = '';
+  for (const id of ['ref', 'heat']) {
+    const cv = $(id);
+    cv.getContext('2d', { willReadFrequently: true }).clearRect(0, 0, cv.width, cv.height);
+  }
+  redrawProbe();
+}
+
 function applyState(s) {
   tp.state = s;
-  if (!s.reference && lastRef) { // comparison switched off: drop the stale reference
-    lastRef = null;
-    $('ref-id').textContent = '';
-    redrawProbe();
-  }
+  if (!s.reference) clearComparison();
   fillSelect('scene', s.scenes, s.scene);
   fillSelect('method', s.methods, s.method);
   describeMethods(s);
-  for (const k of ['width', 'height', 'budget', 'n', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference', 'specular_only']) setValue(k, s[k]);
-  setValue('a', Number(s.a).toFixed(4));
-  setValue('b', Number(s.b).toFixed(4));
-  $('use-ab').checked = s.use_ab;
-  $('use-n').checked = !s.use_ab;
-  setValue('color', toHex(s.color));
+  for (const k of ['width', 'height', 'budget', 'ka', 'kd', 'ks', 'animate', 'paused', 'reference', 'specular_only', 'color'])
+    setValue(k, controlValue(s, k));
+  showExponentChoice(s);
   renderLights(s.lights);
 }
 
-function renderLights(lights) {
+// The lights' rows are rebuilt from each state, except while the user edits a field of one (a
+// button keeps the focus after a click, and must not hold the list back); when the focus leaves
+// the list it shows the latest state.
+function renderLights(lights, force = false) {
   const box = $('lights');
-  if (box.contains(document.activeElement)) return;
+  const editing = box.contains(document.activeElement) && document.activeElement.tagName !== 'BUTTON';
+  if (editing && !force) return;
   box.innerHTML = '';
   lights.forEach((l, i) => {
     const div = document.createElement('div');
     div.className = 'light';
     div.innerHTML = `#${i} <select><option>directional</option><option>point</option></select>
       <input type="number" step="0.1"><input type="number" step="0.1"><input type="number" step="0.1">
-      <input type="color"> <button>set</button> <button>remove</button>`;
+      <input type="color" title="hue"> <input type="number" step="0.1" min="0" max="4" title="intensity (0…4)" class="intensity">
+      <button>set</button> <button>remove</button>`;
     const [kind] = div.getElementsByTagName('select');
     const inputs = div.getElementsByTagName('input');
     const [setB, remB] = div.getElementsByTagName('button');
     kind.value = l.kind;
     for (let k = 0; k < 3; ++k) inputs[k].value = l.vector[k];
-    inputs[3].value = toHex(l.color);
+    const shown = splitColour(l.color);
+    inputs[3].value = shown.hex;
+    inputs[4].value = shown.scale;
     setB.onclick = () => send({ type: 'set_light', index: i, kind: kind.value,
-      vector: [0, 1, 2].map((k) => Number(inputs[k].value)), color: fromHex(inputs[3].value) });
+      vector: [0, 1, 2].map((k) => Number(inputs[k].value)),
+      color: joinColour(inputs[3].value, Number(inputs[4].value), l.color) });
     remB.onclick = () => send({ type: 'remove_light', index: i });
     box.appendChild(div);
   });
@@ -377,10 +456,12 @@ function applyStats(s) {
   $('render-ms').textContent = s.render_ms.toFixed(2);
   $('clients').textContent = s.clients;
   const e = s.error;
-  $('error').innerHTML = e
-    ? `<b>vs reference</b> (frame ${e.frame_id}, ${e.pixels} px)<br>colour correctness ${e.correctness.toFixed(5)}<br>` +
-      `mean ${e.mean_levels.toFixed(3)} levels, max ${e.max_levels}<br>PSNR ${e.psnr.toFixed(2)} dB`
-    : '';
+  // No pixel covered in both images (or a reference of another size) compares nothing: its
+  // figures are not a perfect score.
+  $('error').innerHTML = !e ? ''
+    : e.pixels === 0 ? `<b>vs reference</b> (frame ${e.frame_id}): no pixels compared`
+    : `<b>vs reference</b> (frame ${e.frame_id}, ${e.pixels} px)<br>colour correctness ${e.correctness.toFixed(5)}<br>` +
+      `mean ${e.mean_levels.toFixed(3)} levels, max ${e.max_levels}<br>PSNR ${e.psnr.toFixed(2)} dB`;
 }
 
 function wire() {
@@ -397,7 +478,7 @@ function wire() {
     ? { type: 'set_exponent', a: Number($('a').value), b: Number($('b').value) }
     : { type: 'set_exponent', n: Number($('n').value) });
   $('apply-mat').onclick = () => send({ type: 'set_material', ka: Number($('ka').value), kd: Number($('kd').value),
-    ks: Number($('ks').value), color: fromHex($('color').value) });
+    ks: Number($('ks').value), color: tp.state ? materialColour($('color').value, tp.state.color) : fromHex($('color').value) });
   $('add-light').onclick = () => send({ type: 'add_light', kind: 'directional', vector: [-1, 1, 1], color: [1, 1, 1] });
   const rescale = () => {
     for (const id of ['device', 'ref', 'heat']) sizeCanvas($(id), $(id).width, $(id).height);
@@ -407,6 +488,9 @@ function wire() {
   $('compare-all').onclick = () => send({ type: 'compare_all' });
   window.addEventListener('resize', () => { if (zoomChoice === 'fit') rescale(); });
   $('row').onchange = () => redrawProbe();
+  $('lights').addEventListener('focusout', (e) => {
+    if (tp.state && !$('lights').contains(e.relatedTarget)) setTimeout(() => renderLights(tp.state.lights), 0);
+  });
   for (const id of ['device', 'ref', 'heat']) {
     $(id).onclick = (e) => {
       const r = e.target.getBoundingClientRect();

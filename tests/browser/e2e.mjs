@@ -6,7 +6,9 @@
 //     device's registry can be selected, renders, and is described under the selector;
 //  3. the reference comparison arrives (reference frame paired with the device frame, error stats),
 //     and kb-adaptive's budget set from the page makes it sample less;
-//  4. the page reconnects by itself when the server restarts.
+//  4. the page reconnects by itself when the server restarts;
+// and what a review found (2026-12-06): refused values, lights' colours and removal, the reference
+// switched off.
 // Usage: node e2e.mjs <path to tinyphong-server>
 import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
@@ -229,6 +231,57 @@ try {
       boxes[0].right <= boxes[1].left && boxes[1].right <= boxes[2].left && boxes[2].right <= 1600 &&
       boxes.every((b) => b.width > 300);
   check(row, `side by side at 640x480 in 1600 px: ${boxes.map((b) => `${Math.round(b.left)}-${Math.round(b.right)}@${Math.round(b.top)}`).join(', ')}`);
+
+  // 3f. Found by review (2026-12-06). A refused value gives way to the server's in its control
+  // (the server sends no state for a refused message).
+  const budgetNow = await page.evaluate(() => window.tp.state.budget);
+  await page.fill('#budget', '20');
+  await page.dispatchEvent('#budget', 'change');
+  await page.waitForFunction(() => window.tp.replies.some((r) => r.type === 'error' && r.request === 'set_budget'),
+                             null, { timeout: 10000 });
+  const budgetShown = await page.inputValue('#budget');
+  check(budgetShown === String(budgetNow), `a refused budget (20) gives way to the server's (${budgetShown})`);
+
+  // A light's row keeps a colour above 1 and its exact value: "set" to move the light sends it back
+  // unchanged (a colour picker alone holds 8 bits in [0, 1]).
+  const nLights = await page.evaluate(() => window.tp.state.lights.length);
+  await page.click('#add-light');
+  await page.waitForFunction((n) => window.tp.state.lights.length === n + 1 &&
+                             document.querySelectorAll('#lights .light').length === n + 1, nLights, { timeout: 10000 });
+  await page.evaluate((i) => window.tp.send({ type: 'set_light', index: i, color: [3, 2.5, 0.3] }), nLights);
+  const lightRow = () => page.locator('#lights .light').nth(nLights);
+  await page.waitForFunction((i) => {
+    const r = document.querySelectorAll('#lights .light')[i];
+    return window.tp.state.lights[i].color[0] === 3 && r && r.querySelector('.intensity').value === '3';
+  }, nLights, { timeout: 10000 });
+  await lightRow().locator('input').nth(0).fill('0.5');
+  await lightRow().locator('button', { hasText: 'set' }).click();
+  await page.waitForFunction((i) => window.tp.state.lights[i].vector[0] === 0.5, nLights, { timeout: 10000 });
+  const moved = await page.evaluate((i) => window.tp.state.lights[i].color, nLights);
+  check(JSON.stringify(moved) === JSON.stringify([3, 2.5, 0.3]),
+        `moving a light from its row keeps its colour (${JSON.stringify(moved)})`);
+  // "remove" from the row: the list follows at once (the clicked button keeps the focus).
+  await lightRow().locator('button', { hasText: 'remove' }).click();
+  await page.waitForFunction((n) => window.tp.state.lights.length === n &&
+                             document.querySelectorAll('#lights .light').length === n, nLights, { timeout: 10000 });
+  check(true, `after "remove" the list shows ${nLights} light(s), as the server has`);
+
+  // The reference switched off: its view and the difference go blank, and a client that joins
+  // afterwards gets no reference frame (the server kept the last one and sent it).
+  await page.uncheck('#reference');
+  await page.waitForFunction(() => window.tp.state.reference === false, null, { timeout: 10000 });
+  const blank = await page.evaluate(() => ['ref', 'heat'].every((id) => {
+    const c = document.getElementById(id);
+    return c.getContext('2d').getImageData(0, 0, c.width, c.height).data.every((v) => v === 0);
+  }) && document.getElementById('ref-id').textContent === '');
+  check(blank, 'with the reference off, the reference and difference views are blank');
+  const late = await context.newPage();
+  await late.goto(server.url);
+  await late.waitForFunction(() => window.tp.framesPainted >= 1 && window.tp.state, null, { timeout: 30000 });
+  await late.waitForTimeout(1500);
+  const lateRefs = await late.evaluate(() => window.tp.refsPainted);
+  check(lateRefs === 0, `a client joining with the reference off paints no reference (${lateRefs})`);
+  await late.close();
 
   // 4. Restart the server on the same port: the page reconnects and paints again.
   const port = server.port;

@@ -298,6 +298,48 @@ TEST(ServerRobustness, ReferenceFramesArePairedWithDeviceFrames) {
   EXPECT_LE(s["error"]["max_levels"].get<double>(), 2.0);
 }
 
+// Found by review (2026-12-06): a client that joined after the reference was switched off got
+// the last reference frame (the hub kept it), and the page showed a comparison nobody asked for.
+TEST(ServerRobustness, NoReferenceFrameOnceTheReferenceIsOff) {
+  ServerProcess srv(pattern_args());
+  WsClient c(srv.port());
+  c.send_json({{"type", "animate"}, {"on", false}});
+  c.send_json({{"type", "reference"}, {"on", true}});
+  bool got_reference = false;
+  for (auto end = Clock::now() + 10s; Clock::now() < end && !got_reference;) {
+    Message m = c.read(2s);
+    if (!m.ok) break;
+    if (!m.binary) continue;
+    tp::server::EncodedFrame h;
+    ASSERT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    c.ack(m.data);
+    got_reference = h.kind == tp::server::FrameKind::reference;
+  }
+  ASSERT_TRUE(got_reference);
+  c.send_json({{"type", "reference"}, {"on", false}});
+  json s;
+  for (int i = 0; i < 20 && !(s.is_object() && s["reference"] == false); ++i)
+    s = c.read_json("state", 2s);
+  ASSERT_TRUE(s.is_object() && s["reference"] == false);
+  // A new client gets the state and the device frame on screen, and no reference frame.
+  WsClient late(srv.port());
+  int device_frames = 0, reference_frames = 0;
+  for (auto end = Clock::now() + 3s; Clock::now() < end;) {
+    Message m =
+        late.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    if (!m.ok) break;
+    if (!m.binary) continue;
+    tp::server::EncodedFrame h;
+    ASSERT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    late.ack(m.data);
+    (h.kind == tp::server::FrameKind::device ? device_frames : reference_frames)++;
+  }
+  EXPECT_EQ(device_frames, 1);
+  EXPECT_EQ(reference_frames, 0);
+}
+
 // Found by review (2026-12-06): an unknown key of 63 ASCII bytes and a two-byte character was
 // cut to 64 bytes inside the character; the reply's JSON text then threw on the invalid UTF-8,
 // and the exception ended the server for every client.

@@ -223,6 +223,9 @@ TEST(Http, ServesOnlyTheEmbeddedAllowList) {
   auto res = route(get("/"), policy());
   EXPECT_EQ(res.result(), http::status::ok);
   EXPECT_NE(res.body().find("<canvas"), std::string::npos);
+  // The page's scripts and connections are its server's only ("ws:" allowed any host's sockets).
+  EXPECT_EQ(res["Content-Security-Policy"],
+            "default-src 'self'; connect-src 'self'; img-src 'self' data:; frame-ancestors 'none'");
   EXPECT_EQ(route(get("/app.js"), policy()).result(), http::status::ok);
   EXPECT_EQ(route(get("/style.css?v=1"), policy()).result(), http::status::ok);
   for (const char* t :
