@@ -68,10 +68,13 @@ Bound pinned(std::string_view case_name, std::string_view method, int measured_m
   return {case_name, method, measured_max + 2, mean, measured_saturations};
 }
 
-Verdict judge(const Comparison& error, std::uint64_t saturations, const std::optional<Bound>& b) {
+Verdict judge(const Comparison& error, std::uint64_t saturations, const std::optional<Bound>& b,
+              const CoverageBound& coverage) {
   if (!b) return Verdict::kNoBound;
-  const bool within =
-      error.max_abs <= b->max_abs && error.mean_abs <= b->mean_abs && saturations <= b->saturations;
+  const bool within = error.max_abs <= b->max_abs && error.mean_abs <= b->mean_abs &&
+                      saturations == b->saturations &&
+                      error.only_reference <= coverage.only_reference &&
+                      error.only_evaluated <= coverage.only_evaluated;
   return within ? Verdict::kWithin : Verdict::kExceeds;
 }
 
@@ -104,8 +107,9 @@ std::vector<Result> run(const Options& options,
       r.error = compare(ref_image, ref.covered, frame.image(), frame.covered);
       r.saturations = counter(frame.counters, "saturations");
       r.bound = bound_of(c.name, m);
+      r.coverage = coverage_bound(c.name);
       r.known_failure = known_failure(c.name, m);
-      r.verdict = judge(r.error, r.saturations, r.bound);
+      r.verdict = judge(r.error, r.saturations, r.bound, r.coverage);
       r.seconds = std::chrono::duration<double>(stop - start).count();
       if (progress) progress(r);
       results.push_back(std::move(r));
@@ -134,6 +138,14 @@ std::string row(const Result& r) {
     line += "     —        —      — |";
   }
   line += " " + std::string(verdict_name(r.verdict));
+  if (r.error.only_reference > r.coverage.only_reference ||
+      r.error.only_evaluated > r.coverage.only_evaluated) {
+    std::snprintf(buf, sizeof buf,
+                  " (coverage: %lld reference-only, %lld device-only pixels; bound %lld, %lld)",
+                  r.error.only_reference, r.error.only_evaluated, r.coverage.only_reference,
+                  r.coverage.only_evaluated);
+    line += buf;
+  }
   if (!r.known_failure.empty()) line += "  (" + std::string(r.known_failure) + ")";
   return line;
 }
@@ -155,7 +167,8 @@ void print_tables(std::ostream& out, const std::vector<Result>& results) {
                                  [](const Result& r) { return r.verdict != Verdict::kWithin; });
   out << results.size() << " results, " << bad << " outside their documented bound\n"
       << "(max, mean: |error| against the double reference in 8-bit levels over the pixels both "
-         "cover; sat: the device's saturation counter for the frame)\n";
+         "cover; sat: the device's saturation counter for the frame; a bound also holds the "
+         "pixels one image alone covers to the case's count)\n";
 }
 
 void write_json(std::ostream& out, const std::vector<Result>& results, const Options& options) {
@@ -179,7 +192,9 @@ void write_json(std::ostream& out, const std::vector<Result>& results, const Opt
     if (r.bound)
       e["bound"] = {{"max_abs", r.bound->max_abs},
                     {"mean_abs", r.bound->mean_abs},
-                    {"saturations", r.bound->saturations}};
+                    {"saturations", r.bound->saturations},
+                    {"only_reference", r.coverage.only_reference},
+                    {"only_evaluated", r.coverage.only_evaluated}};
     j["results"].push_back(e);
   }
   out << j.dump(1) << "\n";

@@ -62,6 +62,17 @@ const std::vector<Bound>& bounds();
 // method (or of the formats) rather than a defect; empty otherwise (host/stress_bounds.cpp).
 std::string_view known_failure(std::string_view case_name, std::string_view method);
 
+// The pixels that one image covers and the other does not, pinned per case at the default seed
+// (host/stress_bounds.cpp): the device has one rasterizer, so its coverage is the same for every
+// method, and it is the reference's except where an edge passes within the formats' rounding of
+// a pixel centre (tiny, huge and degenerate triangles). Cases not listed: none either way.
+struct CoverageBound {
+  std::string_view case_name;
+  long long only_reference = 0;  // covered by the reference alone
+  long long only_evaluated = 0;  // covered by the device alone
+};
+CoverageBound coverage_bound(std::string_view case_name);
+
 // The margin every bound carries over its measurement (the same as the scene-accuracy test's):
 // max + 2 levels, mean × 1.05 + 0.05 levels; the saturation count exactly (the device is
 // deterministic, so any change in it is a change in the firmware).
@@ -76,6 +87,7 @@ struct Result {
   Comparison error;  // device against the double reference
   std::uint64_t saturations = 0;
   std::optional<Bound> bound;
+  CoverageBound coverage;          // the case's (coverage_bound)
   std::string_view known_failure;  // why the bound is large, where it is (stress::known_failure)
   Verdict verdict = Verdict::kNoBound;
   double seconds = 0;  // wall time of the device render
@@ -93,7 +105,11 @@ struct Options {
 std::vector<Result> run(const Options& options,
                         const std::function<void(const Result&)>& progress = {});
 
-Verdict judge(const Comparison& error, std::uint64_t saturations, const std::optional<Bound>& b);
+// Within: |error| at most the bound's, the saturation count the bound's exactly (fewer means a
+// counted site stopped counting as much as more does), and no more pixels covered by one image
+// alone than the case's coverage bound.
+Verdict judge(const Comparison& error, std::uint64_t saturations, const std::optional<Bound>& b,
+              const CoverageBound& coverage = {});
 
 // One table per method (rows: cases) and a summary line; JSON: one object per result.
 void print_tables(std::ostream& out, const std::vector<Result>& results);

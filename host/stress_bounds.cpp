@@ -115,6 +115,26 @@ std::string_view known_failure(std::string_view case_name, std::string_view meth
   return {};
 }
 
+CoverageBound coverage_bound(std::string_view case_name) {
+  // Measured with the full suite at the default seed on 2026-12-06 (`tinyphong stress --json`,
+  // the only_reference and only_evaluated of each result: the same for every method of a
+  // case), pinned exactly: both rasterize the same scene deterministically.
+  static constexpr CoverageBound kCases[] = {
+      {"exponent-n316", 0, 2},
+      {"light-inside-offset", 0, 1},
+      {"sliver-degenerate", 19, 0},
+      {"scale-large", 507, 0},
+      {"scale-huge", 0, 4587},
+      {"scale-small", 22, 7},
+      {"scale-tiny", 133, 60},
+      {"ab-min", 0, 2},
+      {"ab-max", 1, 0},
+  };
+  for (const CoverageBound& c : kCases)
+    if (c.case_name == case_name) return c;
+  return {case_name, 0, 0};
+}
+
 const std::vector<Bound>& bounds() {
   // {case, method, max |error| (levels), mean |error| (levels), saturations per frame}
   static const std::vector<Bound> table = {

@@ -25,6 +25,20 @@ TEST(StressJudge, EachLimitCanFail) {
   EXPECT_EQ(judge(error_of(5, 1.51), 0, b), Verdict::kExceeds);
   EXPECT_EQ(judge(error_of(5, 1.0), 1, b), Verdict::kExceeds);
   EXPECT_EQ(judge(error_of(0, 0.0), 0, std::nullopt), Verdict::kNoBound);
+  // Found by review (2026-12-06): fewer saturations than pinned passed (a site that stopped
+  // counting), and pixels covered by one image alone were never judged (a method that drew
+  // nothing had max = mean = 0).
+  const Bound counted{"c", "m", 10, 1.5, 40};
+  EXPECT_EQ(judge(error_of(5, 1.0), 40, counted), Verdict::kWithin);
+  EXPECT_EQ(judge(error_of(5, 1.0), 0, counted), Verdict::kExceeds);
+  Comparison nothing_drawn = error_of(0, 0.0);
+  nothing_drawn.only_reference = 1000;
+  EXPECT_EQ(judge(nothing_drawn, 0, b), Verdict::kExceeds);
+  Comparison extra = error_of(0, 0.0);
+  extra.only_evaluated = 7;
+  EXPECT_EQ(judge(extra, 0, b, {"c", 0, 7}), Verdict::kWithin);
+  EXPECT_EQ(judge(extra, 0, b, {"c", 0, 6}), Verdict::kExceeds);
+  EXPECT_EQ(judge(extra, 0, b, {"c", 7, 0}), Verdict::kExceeds);
   std::vector<Result> results(2);
   results[0].verdict = Verdict::kWithin;
   results[1].verdict = Verdict::kNoBound;
