@@ -10,9 +10,10 @@
 // to run under `perf record` when profiling the frame alone (warm caches, no peer in between,
 // unlike tinyphong-results' interleaved rounds; docs/DECISIONS.md, "The vertex cache projects").
 #include <algorithm>
-#include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "firmware/types.hpp"
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
+#include "host/size_text.hpp"
 
 int main(int argc, char** argv) {
   using namespace tp::host;
@@ -37,20 +39,25 @@ int main(int argc, char** argv) {
   app.add_option("--frames", frames, "render this many frames and print the median frame time")
       ->check(CLI::Range(1, 100000));
   CLI11_PARSE(app, argc, argv);
+  // The options first, named as options (a bad method was blamed on the scene file's line 0).
+  std::optional<Size> resolution;
+  if (!size.empty() && !(resolution = parse_size(size))) {
+    std::cerr << "tinyphong-draw: --size: " << size_expected(size) << "\n";
+    return 2;
+  }
+  try {
+    if (!method.empty()) (void)method_from_name(method);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "tinyphong-draw: --method: " << e.what() << "\n";
+    return 2;
+  }
   try {
     Scene scene = load_scene(scene_file);
     if (!method.empty()) scene.method = method;
     if (budget != 0) scene.budget = budget;
-    if (!size.empty()) {
-      int w = 0, h = 0;
-      char x = 0;
-      if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
-          w <= 0 || h <= 0) {
-        std::cerr << "tinyphong-draw: --size: expected WIDTHxHEIGHT, got '" << size << "'\n";
-        return 2;
-      }
-      scene.width = w;
-      scene.height = h;
+    if (resolution) {
+      scene.width = resolution->width;
+      scene.height = resolution->height;
     }
     DeviceRenderer device(scene.width, scene.height);
     device.set_scene(scene);

@@ -23,10 +23,12 @@
 //   usage: fit_cosn_closed_form least-squares
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -155,11 +157,32 @@ int least_squares_mode() {
   return 0;
 }
 
+int usage(const std::string& problem) {
+  std::fprintf(stderr,
+               "fit_cosn_closed_form: %s\nusage: fit_cosn_closed_form [rounds] [refine]\n"
+               "       fit_cosn_closed_form least-squares\n",
+               problem.c_str());
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::string_view(argv[1]) == "least-squares") return least_squares_mode();
-  const int rounds = argc > 1 ? std::atoi(argv[1]) : 6;
+  if (argc > 1 && std::string_view(argv[1]) == "least-squares") {
+    if (argc > 2) return usage("least-squares takes no more arguments");
+    return least_squares_mode();
+  }
+  // Rounds as a whole number in 1..1000 (atoi made "refine" alone, "-3" and "x" zero rounds, and
+  // printed the starting point's coefficients as a fit).
+  int rounds = 6;
+  if (argc > 1) {
+    const std::string_view text = argv[1];
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), rounds);
+    if (ec != std::errc() || end != text.data() + text.size() || rounds < 1 || rounds > 1000)
+      return usage("rounds must be a whole number in 1..1000, got '" + std::string(text) + "'");
+  }
+  if (argc > 3 || (argc > 2 && std::string_view(argv[2]) != "refine"))
+    return usage("the second argument can only be 'refine'");
   Problem f;
   for (int n = 1; n <= 200; ++n) f.ns.push_back(n);
   for (double v = 220; v < 10000; v *= 1.1) f.ns.push_back(static_cast<int>(v));

@@ -14,7 +14,9 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "host/llvmpipe.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
+#include "host/size_text.hpp"
 
 namespace {
 
@@ -51,6 +54,72 @@ struct Row {
   std::uint64_t pixels = 0;
 };
 
+// One scene's table: every method (and the peer) in `reps` interleaved rounds. Throws on a scene
+// that does not load or fit the device.
+void print_scene(const std::string& name, const std::optional<Size>& resolution,
+                 const std::vector<std::string>& methods, int reps, const std::string& peer) {
+  Scene scene = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
+  if (resolution) {
+    scene.width = resolution->width;
+    scene.height = resolution->height;
+  }
+  DeviceRenderer device(scene.width, scene.height);
+  device.set_scene(scene);
+  const ReferenceFrame ref = device.render_reference(0.0, Interpolation::Phong);
+  const ReferenceFrame ang = device.render_reference(0.0, Interpolation::Angular);
+
+  std::map<std::string, std::vector<double>> times;
+  std::map<std::string, Row> rows;
+  std::unique_ptr<LlvmpipePeer> llvmpipe;
+  if (!peer.empty()) {  // a PeerError ends the run, as a scene's error does (main)
+    llvmpipe = std::make_unique<LlvmpipePeer>(scene.width, scene.height);
+    llvmpipe->set_scene(scene);
+  }
+  for (int round = 0; round < reps; ++round) {
+    if (llvmpipe) {  // first in the round, so that no method always follows it
+      const PeerFrame f = llvmpipe->render(0.0);
+      times[kPeerName].push_back(f.render_ms);
+      if (round == 0) {
+        Row& r = rows[kPeerName];
+        r.method = kPeerName;
+        r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
+        r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
+      }
+    }
+    for (const std::string& m : methods) {
+      Scene s = scene;
+      s.method = m;
+      device.set_scene(s);
+      const DeviceFrame f = device.render(0.0);
+      times[m].push_back(f.render_ms);
+      if (round == 0) {
+        Row& r = rows[m];
+        r.method = m;
+        r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
+        r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
+        for (const auto& [k, v] : f.counters)
+          if (k == "pixels_written") r.pixels = v;
+      }
+    }
+  }
+  const double gouraud = median(times["gouraud"]);
+  std::printf("### %s (%dx%d, %zu light%s)\n\n", name.c_str(), scene.width, scene.height,
+              scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
+  std::printf(
+      "| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
+      "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
+  std::vector<std::string> shown = methods;
+  if (llvmpipe) shown.emplace_back(kPeerName);
+  for (const std::string& m : shown) {
+    const Row& r = rows[m];
+    const double ms = median(times[m]);
+    std::printf("| %s | %.4f | %.1f | %.3f | %d | %.3f / %d | %.2f | %.2f |\n", m.c_str(),
+                r.phong.color_correctness, r.phong.psnr_db, r.phong.mean_abs, r.phong.max_abs,
+                r.angular.mean_abs, r.angular.max_abs, ms, ms / gouraud);
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +137,22 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({std::string(kPeerName)}));
   CLI11_PARSE(app, argc, argv);
 
+  // The options first, named as options: a bad method or size ended in an uncaught exception
+  // (SIGABRT), the method blamed on a scene file's line 0.
+  std::optional<Size> resolution;
+  if (!size.empty() && !(resolution = parse_size(size))) {
+    std::cerr << "tinyphong-results: --size: " << size_expected(size) << "\n";
+    return 2;
+  }
   std::vector<std::string> methods = split(methods_arg);
+  for (const std::string& m : methods) {
+    try {
+      (void)method_from_name(m);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "tinyphong-results: --methods: " << e.what() << "\n";
+      return 2;
+    }
+  }
   if (methods.empty())
     for (const auto& m : method_names()) methods.emplace_back(m.name);
   if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())
@@ -82,83 +166,12 @@ int main(int argc, char** argv) {
                "angular one), time = median frame time / Gouraud's in the same run ("
             << reps << " interleaved rounds).\n\n";
 
-  for (const std::string& name : split(scenes_arg)) {
-    Scene scene;
-    try {
-      scene = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
-      if (!size.empty()) {
-        int w = 0, h = 0;
-        if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) {
-          std::cerr << "--size: expected WIDTHxHEIGHT\n";
-          return 2;
-        }
-        scene.width = w;
-        scene.height = h;
-      }
-    } catch (const SceneError& e) {
-      std::cerr << e.what() << "\n";
-      return 1;
-    }
-    DeviceRenderer device(scene.width, scene.height);
-    device.set_scene(scene);
-    const ReferenceFrame ref = device.render_reference(0.0, Interpolation::Phong);
-    const ReferenceFrame ang = device.render_reference(0.0, Interpolation::Angular);
-
-    std::map<std::string, std::vector<double>> times;
-    std::map<std::string, Row> rows;
-    std::unique_ptr<LlvmpipePeer> llvmpipe;
-    if (!peer.empty()) {
-      try {
-        llvmpipe = std::make_unique<LlvmpipePeer>(scene.width, scene.height);
-        llvmpipe->set_scene(scene);
-      } catch (const PeerError& e) {
-        std::cerr << e.what() << "\n";
-        return 1;
-      }
-    }
-    for (int round = 0; round < reps; ++round) {
-      if (llvmpipe) {  // first in the round, so that no method always follows it
-        const PeerFrame f = llvmpipe->render(0.0);
-        times[kPeerName].push_back(f.render_ms);
-        if (round == 0) {
-          Row& r = rows[kPeerName];
-          r.method = kPeerName;
-          r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
-          r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
-        }
-      }
-      for (const std::string& m : methods) {
-        Scene s = scene;
-        s.method = m;
-        device.set_scene(s);
-        const DeviceFrame f = device.render(0.0);
-        times[m].push_back(f.render_ms);
-        if (round == 0) {
-          Row& r = rows[m];
-          r.method = m;
-          r.phong = compare(ref.image(), ref.covered, f.image(), f.covered);
-          r.angular = compare(ang.image(), ang.covered, f.image(), f.covered);
-          for (const auto& [k, v] : f.counters)
-            if (k == "pixels_written") r.pixels = v;
-        }
-      }
-    }
-    const double gouraud = median(times["gouraud"]);
-    std::printf("### %s (%dx%d, %zu light%s)\n\n", name.c_str(), scene.width, scene.height,
-                scene.lights.size(), scene.lights.size() == 1 ? "" : "s");
-    std::printf(
-        "| method | colour correctness | PSNR dB | mean abs | max abs | vs angular: mean / max | "
-        "frame ms | time / Gouraud |\n|---|---|---|---|---|---|---|---|\n");
-    std::vector<std::string> shown = methods;
-    if (llvmpipe) shown.emplace_back(kPeerName);
-    for (const std::string& m : shown) {
-      const Row& r = rows[m];
-      const double ms = median(times[m]);
-      std::printf("| %s | %.4f | %.1f | %.3f | %d | %.3f / %d | %.2f | %.2f |\n", m.c_str(),
-                  r.phong.color_correctness, r.phong.psnr_db, r.phong.mean_abs, r.phong.max_abs,
-                  r.angular.mean_abs, r.angular.max_abs, ms, ms / gouraud);
-    }
-    std::printf("\n");
+  try {
+    for (const std::string& name : split(scenes_arg))
+      print_scene(name, resolution, methods, reps, peer);
+  } catch (const std::exception& e) {  // a scene that does not load or does not fit the device
+    std::cerr << "tinyphong-results: " << e.what() << "\n";
+    return 1;
   }
   return 0;
 }

@@ -132,12 +132,28 @@ struct DeviceRenderer::Prepared {
   std::vector<MeshRange> meshes;
 };
 
+namespace {
+
+// The block for the largest frame, refused before it is allocated: a 20000 x 20000 request took
+// 2.75 GB before the device refused the viewport.
+std::size_t block_bytes(int max_width, int max_height, std::uint32_t max_vertices,
+                        std::uint32_t max_indices) {
+  constexpr int kMax = static_cast<int>(fw::kMaxDimension);
+  if (max_width < 1 || max_height < 1 || max_width > kMax || max_height > kMax)
+    throw std::invalid_argument("viewport " + std::to_string(max_width) + "x" +
+                                std::to_string(max_height) + " beyond the device's 1.." +
+                                std::to_string(kMax) + " per side");
+  return fw::Device::memory_required(
+      fw::ViewportCmd{static_cast<std::uint32_t>(max_width), static_cast<std::uint32_t>(max_height),
+                      fw::PixelFormat::kRgb888, false},
+      fw::BufferCapacityCmd{max_vertices, max_indices});
+}
+
+}  // namespace
+
 DeviceRenderer::DeviceRenderer(int max_width, int max_height, std::uint32_t max_vertices,
                                std::uint32_t max_indices)
-    : memory_(fw::Device::memory_required(
-          fw::ViewportCmd{static_cast<std::uint32_t>(max_width),
-                          static_cast<std::uint32_t>(max_height), fw::PixelFormat::kRgb888, false},
-          fw::BufferCapacityCmd{max_vertices, max_indices})),
+    : memory_(block_bytes(max_width, max_height, max_vertices, max_indices)),
       device_(std::span<std::byte>(memory_)) {}
 
 DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {

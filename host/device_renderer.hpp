@@ -60,7 +60,8 @@ CounterSnapshot counter_snapshot(const fw::Counters& c);
 class DeviceRenderer {
  public:
   // Allocates the device's memory block once, for frames up to max_width x max_height and
-  // meshes up to max_vertices / max_indices; the device itself never allocates.
+  // meshes up to max_vertices / max_indices; the device itself never allocates. Throws
+  // std::invalid_argument, before allocating, for a side outside 1..fw::kMaxDimension.
   explicit DeviceRenderer(int max_width = 2048, int max_height = 2048,
                           std::uint32_t max_vertices = 1u << 17,
                           std::uint32_t max_indices = 3u << 18);

@@ -35,6 +35,7 @@
 #include "host/metrics.hpp"
 #include "host/reference.hpp"
 #include "host/scene.hpp"
+#include "host/size_text.hpp"
 #include "host/stress.hpp"
 
 namespace {
@@ -118,19 +119,10 @@ Scene load(const SceneOptions& o) {
   if (o.no_depth_buffer || o.small_part) s.depth_buffer = false;
   if (o.small_part) s.small_part_frame = true;
   if (!o.size.empty()) {
-    constexpr int kMax = static_cast<int>(tp::fw::kMaxDimension);  // the device's viewport
-    const auto side = [](std::string_view text, int& v) {
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-      return ec == std::errc() && end == text.data() + text.size() && v >= 1 && v <= kMax;
-    };
-    const std::string_view size = o.size;
-    const std::size_t x = size.find_first_of("xX");
-    int w = 0, h = 0;
-    if (x == std::string_view::npos || !side(size.substr(0, x), w) || !side(size.substr(x + 1), h))
-      throw CLI::ValidationError("--size", "expected WIDTHxHEIGHT, each 1.." +
-                                               std::to_string(kMax) + ", got '" + o.size + "'");
-    s.width = w;
-    s.height = h;
+    const std::optional<Size> size = parse_size(o.size);
+    if (!size) throw CLI::ValidationError("--size", size_expected(o.size));
+    s.width = size->width;
+    s.height = size->height;
   }
   return s;
 }

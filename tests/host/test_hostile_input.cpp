@@ -8,12 +8,16 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "host/device_renderer.hpp"
 #include "host/image_io.hpp"
 #include "host/meshes.hpp"
 #include "host/scene.hpp"
+#include "host/size_text.hpp"
 #include "reader_errors.hpp"
 
 namespace fs = std::filesystem;
@@ -253,4 +257,28 @@ TEST(HostileImage, GreyWithAlphaIsGrey) {
   EXPECT_EQ(im.height, 1);
   EXPECT_EQ(im.rgb, (std::vector<std::uint8_t>{128, 128, 128}));
   fs::remove(file);
+}
+
+// Found by review (2026-12-06): a 20000 x 20000 renderer (tinyphong-draw --size) allocated its
+// 2.75 GB block before the device refused the viewport. The sides are checked first.
+TEST(HostileSize, ADeviceBeyondItsViewportIsRefusedBeforeItsBlock) {
+  using tp::host::DeviceRenderer;
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{
+           {20000, 20000}, {4097, 16}, {16, 4097}, {0, 16}, {16, -1}, {1 << 30, 1 << 30}})
+    EXPECT_THROW(DeviceRenderer(w, h), std::invalid_argument) << w << "x" << h;
+  EXPECT_NO_THROW(DeviceRenderer(4096, 16));
+}
+
+// The --size text of the CLI and the bench programs: two whole numbers in 1..4096.
+TEST(HostileSize, SizeTextIsTwoWholeNumbersWithinTheDevice) {
+  using tp::host::parse_size;
+  const auto s = parse_size("640X480");
+  ASSERT_TRUE(s.has_value());
+  EXPECT_EQ(s->width, 640);
+  EXPECT_EQ(s->height, 480);
+  EXPECT_TRUE(parse_size("4096x1").has_value());
+  for (const char* bad : {"4294967360x64", "99999999999x64", "64x64junk", "64x64x9", "0x5", "5x0",
+                          "4097x5", "x", "", "5", " 5x5", "+5x5", "-5x5", "5x-5", "8192x8192"})
+    EXPECT_FALSE(parse_size(bad).has_value()) << bad;
+  EXPECT_EQ(tp::host::size_expected("9x"), "expected WIDTHxHEIGHT, each 1..4096, got '9x'");
 }
