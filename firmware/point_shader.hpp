@@ -262,7 +262,7 @@ class PointShader {
   // To the next pixel in x (|n|, |p| and the point lights' |v| stay below 2^62 one pixel past
   // the span's end).
   void step(SpanStepper& st) const {
-    for (int j = 0; j < 3; ++j) {
+    TP_UNROLL_XYZ for (int j = 0; j < 3; ++j) {
       st.n[j] += normal_step_[j];
       st.p[j] += eye_step_[j];
     }

@@ -77,19 +77,48 @@ inline constexpr std::array<std::uint16_t, 49> rsqrt_knots = [] {
   }
   return t;
 }();
+#if TP_SIZE_BUILD || defined(__arm__)
+#define TP_FX_DESKTOP_INLINE
 constexpr std::uint32_t rsqrt_seed(std::uint32_t t) {        // 2^30 <= t < 2^32
   const std::uint16_t* knot = &rsqrt_knots[(t >> 26) - 16];  // the knot below T, 0..47
   const std::uint32_t frac = (t >> 10) & 0xffffu;            // T's place between knots, Q.16
   // 1/√T falls: knot[0] >= knot[1]. Truncated, not rounded: one instruction fewer per seed.
   return (1u << 15) + knot[0] - ((static_cast<std::uint32_t>(knot[0] - knot[1]) * frac) >> 16);
 }
+#else
+// Speed builds on the desktop: the same seed, bit for bit, from one 64-bit entry per segment,
+// indexed by t's top six bits as they are (16..63): the knot's value with its 2^15 above, its fall
+// to the next knot below. A second load, the index's rebase, the fall's subtraction and the
+// 2^15's addition fewer per root: 3 of kb-adaptive's 406 instructions per pixel on the teapot,
+// 13 of 1,012 on teapot-l8 (docs/KUIJK-BLAKE.md, "Targets"), for 512 bytes. Not on the
+// Cortex-M: there GCC then inlined the roots into more callers, 29 KB more code at -O2 (16 %),
+// so every Arm image keeps the knots; and on the desktop GCC stopped inlining isqrt_plain into
+// Duff's pixel loop, which TP_FX_DESKTOP_INLINE restores (Duff 449 -> 439 instructions per pixel
+// on the teapot; docs/DECISIONS.md, "The root seed's segments and the stepper unrolled").
+#define TP_FX_DESKTOP_INLINE [[gnu::always_inline]]
+inline constexpr std::array<u64, 64> rsqrt_segments = [] {
+  std::array<u64, 64> s{};
+  for (int k = 0; k < 48; ++k)
+    s[static_cast<std::size_t>(16 + k)] =
+        (u64{(1u << 15) + rsqrt_knots[static_cast<std::size_t>(k)]} << 32) |
+        static_cast<std::uint32_t>(rsqrt_knots[static_cast<std::size_t>(k)] -
+                                   rsqrt_knots[static_cast<std::size_t>(k + 1)]);
+  return s;
+}();
+constexpr std::uint32_t rsqrt_seed(std::uint32_t t) {  // 2^30 <= t < 2^32
+  const u64 segment = rsqrt_segments[t >> 26];
+  const std::uint32_t frac = (t >> 10) & 0xffffu;
+  return static_cast<std::uint32_t>(segment >> 32) -
+         ((static_cast<std::uint32_t>(segment) * frac) >> 16);
+}
+#endif
 
 // The root for e = 0 (the common case: a Q2.60 square into Q1.30): the identical root, round_up
 // and over, from the seed u·(1/√u) (2^-11.4 relative; 2^-8 for radicands below 2^30, where the
 // shift drops bits of the root) and two integer Newton steps r' = (r + u / r) / 2 (2^-23.8, then
 // 2^-48 relative: within one of the root below 2^32), then an exact correction by r² against u.
 // Radicands below 2^16 take the digit-by-digit root.
-constexpr RootResult isqrt_plain(u64 u, u64 limit) {
+TP_FX_DESKTOP_INLINE constexpr RootResult isqrt_plain(u64 u, u64 limit) {
   if (u < (u64{1} << 16)) return isqrt_shifted(u, 0, limit);
   int e = bit_width(u) - 32;  // t = u·2^-e in [2^30, 2^32) for an even e
   e += e & 1;

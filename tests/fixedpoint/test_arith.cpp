@@ -115,3 +115,23 @@ TEST(RsqrtSeed, InterpolationWithinItsBound) {
   EXPECT_LE(worst, 3.70e-4L);
   EXPECT_EQ(fx::detail::rsqrt_seed(std::uint32_t{1} << 30), 65536u);  // 1/√(1/4) = 2, exact
 }
+
+// A speed build reads the seed from 64-bit segments (knot with its 2^15, and its fall), a size
+// build from the 16-bit knots: the same value for every t, so that both builds' frames are the
+// same bits. This test runs in both (fixedpoint_test and fixedpoint_size_build_test) and checks
+// each build's seed against the knots' formula at every t whose low 10 bits are 0 or all ones
+// (the seed reads t's bits 10..31).
+TEST(RsqrtSeed, EveryBuildGivesTheKnotsInterpolation) {
+  const auto& knot = fx::detail::rsqrt_knots;
+  std::uint64_t mismatches = 0;
+  for (std::uint64_t t = std::uint64_t{1} << 30; t < (std::uint64_t{1} << 32); t += 1u << 10) {
+    for (const std::uint64_t x : {t, t + (1u << 10) - 1}) {
+      const std::size_t k = static_cast<std::size_t>((x >> 26) - 16);
+      const std::uint32_t frac = (x >> 10) & 0xffffu;
+      const std::uint32_t want =
+          (1u << 15) + knot[k] - ((static_cast<std::uint32_t>(knot[k] - knot[k + 1]) * frac) >> 16);
+      mismatches += fx::detail::rsqrt_seed(static_cast<std::uint32_t>(x)) != want;
+    }
+  }
+  EXPECT_EQ(mismatches, 0u);
+}
