@@ -91,6 +91,19 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
+// A method named on the command line: refused as the option it is (it was refused as the scene
+// file's, line 0, with exit status 1).
+const CLI::Validator kMethod(
+    [](std::string& text) -> std::string {
+      try {
+        (void)method_from_name(text);
+        return "";
+      } catch (const std::invalid_argument& e) {
+        return e.what();
+      }
+    },
+    "METHOD");
+
 // Writes a file whole or throws naming it: the stream's state is checked after the last byte
 // was flushed and the file closed (a full disk showed only then, and the run exited 0).
 void write_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
@@ -469,7 +482,8 @@ int main(int argc, char** argv) {
   bool render_compare = false;
   auto* render = app.add_subcommand("render", "render a scene with the emulated device");
   add_scene_options(render, render_opts);
-  render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)");
+  render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)")
+      ->check(kMethod);
   add_budget_option(render, render_opts);
   add_depth_buffer_option(render, render_opts);
   render->add_option("-o,--output", render_out, "PNG file to write");
@@ -512,7 +526,8 @@ int main(int argc, char** argv) {
       ->add_option("--rotate", rec.options.rotate_deg,
                    "rotate the objects about the world y axis (degrees)")
       ->check(kAngle);
-  record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)");
+  record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)")
+      ->check(kMethod);
   add_budget_option(record, rec.options);
   add_depth_buffer_option(record, rec.options);
   record->add_flag("--small-part", rec.options.small_part,

@@ -37,8 +37,14 @@ void Hub::publish_frame(FramePtr f) {
 }
 
 void Hub::forget_reference() {
-  std::lock_guard lk(m_);
-  latest_reference_.reset();
+  std::vector<std::shared_ptr<WsSession>> targets;
+  {
+    std::lock_guard lk(m_);
+    latest_reference_.reset();
+    for (auto& w : sessions_)
+      if (auto s = w.lock()) targets.push_back(std::move(s));
+  }
+  for (auto& s : targets) s->drop_reference();
 }
 
 void Hub::broadcast_text(TextPtr msg, bool droppable) {

@@ -18,9 +18,10 @@ class Hub {
  public:
   void join(const std::shared_ptr<WsSession>& s);
   void publish_frame(FramePtr f);  // device or reference frame
-  // The reference was switched off: a client that joins from now on gets no reference frame
-  // (it would show a comparison nobody asked for). Called with the render loop's lock held, so
-  // a reference worker that saw it still on cannot publish after this.
+  // The reference was switched off: a client that joins from now on gets no reference frame, and
+  // no session sends one it has not sent yet (it would come after the "off" state, text going
+  // first, and show a comparison nobody asked for). Called with the render loop's lock held, so a
+  // reference worker that saw it still on cannot publish after this.
   void forget_reference();
   void broadcast_text(TextPtr msg, bool droppable);
   void set_state(TextPtr state);  // the latest "state" message, also sent on join

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "firmware/cosn.hpp"
 #include "host/metrics.hpp"
 
 namespace tp::server {
@@ -98,14 +99,22 @@ void RenderLoop::publish_state() {
     method_info.push_back(
         {{"name", m.name}, {"description", m.description}, {"capabilities", m.capabilities}});
   }
+  // Without the material's own (a, b), the pair the device derives from n (its closed form, the
+  // Kuijk-Blake methods' f): the page shows it, so that choosing (a, b) starts from what renders.
+  const auto radians = [](fw::cosn::angle_t x) {
+    return static_cast<double>(x.raw()) / static_cast<double>(fw::cosn::angle_t::one_raw);
+  };
+  const fw::cosn::CosnParams derived = fw::cosn::least_squares_params(static_cast<int>(s.n));
+  const std::pair<double, double> shown_ab =
+      s.use_ab ? std::pair{s.a, s.b} : std::pair{radians(derived.a), radians(derived.b)};
   json j = {{"type", "state"},
             {"scene", s.scene},
             {"method", s.method},
             {"budget", s.budget},
             {"use_ab", s.use_ab},
             {"n", s.n},
-            {"a", s.a},
-            {"b", s.b},
+            {"a", shown_ab.first},
+            {"b", shown_ab.second},
             {"ka", s.ka},
             {"kd", s.kd},
             {"ks", s.ks},

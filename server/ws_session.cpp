@@ -117,6 +117,12 @@ void WsSession::offer_frame(FramePtr f) {
   });
 }
 
+void WsSession::drop_reference() {
+  net::post(ws_.get_executor(), [self = shared_from_this()] {
+    self->latest_[static_cast<int>(FrameKind::reference)].reset();
+  });
+}
+
 void WsSession::offer_text(TextPtr msg, bool droppable) {
   net::post(ws_.get_executor(),
             [self = shared_from_this(), msg = std::move(msg), droppable]() mutable {

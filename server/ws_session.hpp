@@ -40,6 +40,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
   // Called from any thread (via the hub); each posts to the strand.
   void offer_frame(FramePtr f);
+  void drop_reference();  // the reference was switched off: a reference frame not yet sent goes
   void offer_text(TextPtr msg, bool droppable);
   void close_going_away();
 

@@ -26,7 +26,7 @@ function fnv1a64Rgba(rgba) {
   return hi.toString(16).padStart(8, '0') + lo.toString(16).padStart(8, '0');
 }
 
-const kFrameVersion = 2; // protocol.hpp's kFrameVersion: a header of another version is refused
+const kFrameVersion = 2; // protocol.hpp's kProtocolVersion: a header of another version is refused
 
 function parseHeader(buf) {
   const v = new DataView(buf);
@@ -102,7 +102,6 @@ function onDevice(h) {
 }
 
 function onReference(h) {
-  if (tp.state && !tp.state.reference) return ack(h.id, 'reference'); // sent before "off" arrived
   paint($('ref'), h.width, h.height, h.rgb);
   tp.refsPainted++;
   ack(h.id, 'reference');
@@ -328,7 +327,8 @@ const fromHex = (s) => [1, 3, 5].map((i) => parseInt(s.slice(i, i + 2), 16) / 25
 // changed neither, so "set" to move a light neither cuts a colour above 1 nor rounds it to 8 bits.
 function splitColour(c) {
   const scale = Math.max(...c);
-  return { hex: toHex(scale > 0 ? c.map((v) => v / scale) : c), scale };
+  // A black light is white at intensity 0: raising its intensity alone gives light.
+  return { hex: scale > 0 ? toHex(c.map((v) => v / scale)) : '#ffffff', scale };
 }
 function joinColour(hex, scale, original) {
   const was = splitColour(original);
@@ -347,7 +347,7 @@ function setValue(id, v, force = false) {
 
 // What a control shows of a state message.
 function controlValue(s, id) {
-  if (id === 'a' || id === 'b') return s.use_ab ? Number(s[id]).toFixed(4) : $(id).value;
+  if (id === 'a' || id === 'b') return Number(s[id]).toFixed(4); // without use_ab: those n gives
   if (id === 'color') return toHex(s.color);
   return s[id];
 }
@@ -409,8 +409,8 @@ function applyState(s) {
 }
 
 // The lights' rows are rebuilt from each state, except while the user edits a field of one (a
-// button keeps the focus after a click, and must not hold the list back); when the focus leaves
-// the list it shows the latest state.
+// button keeps the focus after a click in some browsers, and must not hold the list back; a
+// state skipped while editing shows with the next one or a refusal).
 function renderLights(lights, force = false) {
   const box = $('lights');
   const editing = box.contains(document.activeElement) && document.activeElement.tagName !== 'BUTTON';
@@ -433,7 +433,7 @@ function renderLights(lights, force = false) {
     inputs[4].value = shown.scale;
     setB.onclick = () => send({ type: 'set_light', index: i, kind: kind.value,
       vector: [0, 1, 2].map((k) => Number(inputs[k].value)),
-      color: joinColour(inputs[3].value, Number(inputs[4].value), l.color) });
+      color: joinColour(inputs[3].value, inputs[4].value === '' ? shown.scale : Number(inputs[4].value), l.color) });
     remB.onclick = () => send({ type: 'remove_light', index: i });
     box.appendChild(div);
   });
@@ -488,9 +488,6 @@ function wire() {
   $('compare-all').onclick = () => send({ type: 'compare_all' });
   window.addEventListener('resize', () => { if (zoomChoice === 'fit') rescale(); });
   $('row').onchange = () => redrawProbe();
-  $('lights').addEventListener('focusout', (e) => {
-    if (tp.state && !$('lights').contains(e.relatedTarget)) setTimeout(() => renderLights(tp.state.lights), 0);
-  });
   for (const id of ['device', 'ref', 'heat']) {
     $(id).onclick = (e) => {
       const r = e.target.getBoundingClientRect();

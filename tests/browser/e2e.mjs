@@ -242,6 +242,14 @@ try {
   const budgetShown = await page.inputValue('#budget');
   check(budgetShown === String(budgetNow), `a refused budget (20) gives way to the server's (${budgetShown})`);
 
+  // Without the material's own (a, b) the fields show the pair the device derives from n, so that
+  // choosing (a, b) starts from what renders (they were blank, or 0, which is refused).
+  const ab = await page.evaluate(() => [window.tp.state.use_ab, window.tp.state.a, window.tp.state.b,
+    document.getElementById('a').value, document.getElementById('b').value]);
+  check(ab[0] === false && ab[1] > 0 && ab[1] < ab[2] && Number(ab[3]) === Number(ab[1].toFixed(4)) &&
+        Number(ab[4]) === Number(ab[2].toFixed(4)),
+        `without use_ab the a and b fields show the device's (a, b) for n (${ab[3]}, ${ab[4]})`);
+
   // A light's row keeps a colour above 1 and its exact value: "set" to move the light sends it back
   // unchanged (a colour picker alone holds 8 bits in [0, 1]).
   const nLights = await page.evaluate(() => window.tp.state.lights.length);

@@ -58,6 +58,8 @@ for seed in -1 18446744073709551616 "" 0x10 12x; do
     stress --cases ab-min --methods flat --seed "$seed"
 done
 exits 2 "bogus" stress --bogus
+exits 2 "--method: unknown shading method 'bogus'" render "$tri" --method bogus -o "$work/out.png"
+exits 2 "--method: unknown shading method 'bogus'" record "$tri" --method bogus -o "$work/out.tpcmd"
 exits 2 "--size" render "$tri" --size 0x5 -o "$work/out.png"
 exits 3 "cannot write /dev/full" stress --cases ab-min --methods flat --json /dev/full
 # (its verdict is not the point: the bounds are the default seed's, docs/STABILITY.md)
