@@ -48,6 +48,29 @@ int read_frames(WsClient& c, int n, std::chrono::milliseconds timeout,
   return got;
 }
 
+// Reads for `timeout`, acking every frame, and counts the frames of each kind (until the first
+// reference frame if `until_reference`).
+struct FrameCounts {
+  int device = 0, reference = 0;
+};
+FrameCounts count_frames(WsClient& c, std::chrono::milliseconds timeout,
+                         bool until_reference = false) {
+  FrameCounts n;
+  const auto end = Clock::now() + timeout;
+  while (Clock::now() < end && !(until_reference && n.reference > 0)) {
+    Message m =
+        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    if (!m.ok) break;
+    if (!m.binary) continue;
+    tp::server::EncodedFrame h;
+    EXPECT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    c.ack(m.data);
+    (h.kind == tp::server::FrameKind::device ? n.device : n.reference)++;
+  }
+  return n;
+}
+
 }  // namespace
 
 TEST(ServerRobustness, FiftyClientsAllReceiveFrames) {
@@ -305,18 +328,7 @@ TEST(ServerRobustness, NoReferenceFrameOnceTheReferenceIsOff) {
   WsClient c(srv.port());
   c.send_json({{"type", "animate"}, {"on", false}});
   c.send_json({{"type", "reference"}, {"on", true}});
-  bool got_reference = false;
-  for (auto end = Clock::now() + 10s; Clock::now() < end && !got_reference;) {
-    Message m = c.read(2s);
-    if (!m.ok) break;
-    if (!m.binary) continue;
-    tp::server::EncodedFrame h;
-    ASSERT_TRUE(tp::server::decode_header(
-        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
-    c.ack(m.data);
-    got_reference = h.kind == tp::server::FrameKind::reference;
-  }
-  ASSERT_TRUE(got_reference);
+  ASSERT_GE(count_frames(c, 10s, true).reference, 1);
   c.send_json({{"type", "reference"}, {"on", false}});
   json s;
   for (int i = 0; i < 20 && !(s.is_object() && s["reference"] == false); ++i)
@@ -324,20 +336,9 @@ TEST(ServerRobustness, NoReferenceFrameOnceTheReferenceIsOff) {
   ASSERT_TRUE(s.is_object() && s["reference"] == false);
   // A new client gets the state and the device frame on screen, and no reference frame.
   WsClient late(srv.port());
-  int device_frames = 0, reference_frames = 0;
-  for (auto end = Clock::now() + 3s; Clock::now() < end;) {
-    Message m =
-        late.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
-    if (!m.ok) break;
-    if (!m.binary) continue;
-    tp::server::EncodedFrame h;
-    ASSERT_TRUE(tp::server::decode_header(
-        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
-    late.ack(m.data);
-    (h.kind == tp::server::FrameKind::device ? device_frames : reference_frames)++;
-  }
-  EXPECT_EQ(device_frames, 1);
-  EXPECT_EQ(reference_frames, 0);
+  const FrameCounts got = count_frames(late, 3s);
+  EXPECT_EQ(got.device, 1);
+  EXPECT_EQ(got.reference, 0);
 }
 
 // Found by review (2026-12-06): an unknown key of 63 ASCII bytes and a two-byte character was
