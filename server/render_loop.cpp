@@ -160,10 +160,8 @@ bool RenderLoop::apply_pending() {
     {
       std::lock_guard lk(m_);  // before the worker can see the job below
       reference_on_ = flags_.reference;
-      if (!flags_.reference) {
-        error_.reset();
-        hub_.forget_reference();
-      }
+      if (!flags_.reference) error_.reset();
+      if (ref_before && !flags_.reference) hub_.forget_reference();  // switched off by this job
     }
     if (outcome.ok()) {
       changed = true;
