@@ -13,13 +13,13 @@
 #include <exception>
 #include <iostream>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "firmware/types.hpp"
+#include "host/cli_options.hpp"
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
 #include "host/size_text.hpp"
@@ -31,31 +31,19 @@ int main(int argc, char** argv) {
   int budget = 0;
   int frames = 1;
   app.add_option("scene", scene_file, "scene file (JSON)")->required()->check(CLI::ExistingFile);
-  app.add_option("--method", method, "shading method (tinyphong methods)");
-  app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
+  app.add_option("--method", method, "shading method (tinyphong methods)")->check(method_check());
+  app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--budget", budget,
                  "kb-adaptive's error budget in output levels (default: the scene's)")
       ->check(CLI::Range(1, static_cast<int>(tp::fw::kMaxBudgetLevels)));
   app.add_option("--frames", frames, "render this many frames and print the median frame time")
       ->check(CLI::Range(1, 100000));
-  CLI11_PARSE(app, argc, argv);
-  // The options first, named as options (a bad method was blamed on the scene file's line 0).
-  std::optional<Size> resolution;
-  if (!size.empty() && !(resolution = parse_size(size))) {
-    std::cerr << "tinyphong-draw: --size: " << size_expected(size) << "\n";
-    return 2;
-  }
-  try {
-    if (!method.empty()) (void)method_from_name(method);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "tinyphong-draw: --method: " << e.what() << "\n";
-    return 2;
-  }
+  if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   try {
     Scene scene = load_scene(scene_file);
     if (!method.empty()) scene.method = method;
     if (budget != 0) scene.budget = budget;
-    if (resolution) {
+    if (const std::optional<Size> resolution = parse_size(size)) {  // checked by size_check
       scene.width = resolution->width;
       scene.height = resolution->height;
     }

@@ -1,6 +1,6 @@
 // tinyphong-kb-bench: the measured tables of docs/KUIJK-BLAKE.md.
 //
-//   build/h6-rel/bench/tinyphong-kb-bench [--reps 5] [--quick]
+//   build/release/bench/tinyphong-kb-bench [--reps 5] [--quick]
 //
 // 1. Time and error per scene × lights (1, 2, 4, 8) × method: frame time through the device
 //    (host/device_renderer) as a ratio to Gouraud measured in the same run (methods interleaved

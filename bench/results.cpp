@@ -11,17 +11,18 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "host/cli_options.hpp"
 #include "host/device_renderer.hpp"
 #include "host/llvmpipe.hpp"
 #include "host/metrics.hpp"
@@ -125,34 +126,22 @@ void print_scene(const std::string& name, const std::optional<Size>& resolution,
 int main(int argc, char** argv) {
   CLI::App app{"tinyphong results: error and time ratio per scene and method"};
   std::string scenes_arg = "sphere-32,sphere-40,sphere-512,dodecahedron-30,triangle,teapot";
-  std::string methods_arg;
+  std::vector<std::string> methods;
   std::string size, peer;
   int reps = 7;
   app.add_option("--scenes", scenes_arg, "comma-separated scene names from scenes/");
-  app.add_option("--methods", methods_arg, "comma-separated methods (default: all)");
+  app.add_option("--methods", methods, "comma-separated methods (default: all)")
+      ->delimiter(',')
+      ->check(method_check());
   app.add_option("--reps", reps, "timing rounds per method (median taken)")
       ->check(CLI::Range(1, 1000));
-  app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT");
+  app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--peer", peer, "also time a peer renderer in the same rounds")
       ->check(CLI::IsMember({std::string(kPeerName)}));
-  CLI11_PARSE(app, argc, argv);
-
-  // The options first, named as options: a bad method or size ended in an uncaught exception
+  // The options are checked as options: a bad method or size ended in an uncaught exception
   // (SIGABRT), the method blamed on a scene file's line 0.
-  std::optional<Size> resolution;
-  if (!size.empty() && !(resolution = parse_size(size))) {
-    std::cerr << "tinyphong-results: --size: " << size_expected(size) << "\n";
-    return 2;
-  }
-  std::vector<std::string> methods = split(methods_arg);
-  for (const std::string& m : methods) {
-    try {
-      (void)method_from_name(m);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "tinyphong-results: --methods: " << e.what() << "\n";
-      return 2;
-    }
-  }
+  if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
+  const std::optional<Size> resolution = parse_size(size);  // none without --size
   if (methods.empty())
     for (const auto& m : method_names()) methods.emplace_back(m.name);
   if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())

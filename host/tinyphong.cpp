@@ -29,6 +29,7 @@
 #include <CLI/CLI.hpp>
 
 #include "firmware/types.hpp"
+#include "host/cli_options.hpp"
 #include "host/command_stream.hpp"
 #include "host/device_renderer.hpp"
 #include "host/image_io.hpp"
@@ -91,19 +92,6 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
-// A method named on the command line: refused as the option it is (it was refused as the scene
-// file's, line 0, with exit status 1).
-const CLI::Validator kMethod(
-    [](std::string& text) -> std::string {
-      try {
-        (void)method_from_name(text);
-        return "";
-      } catch (const std::invalid_argument& e) {
-        return e.what();
-      }
-    },
-    "METHOD");
-
 // Writes a file whole or throws naming it: the stream's state is checked after the last byte
 // was flushed and the file closed (a full disk showed only then, and the run exited 0).
 void write_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
@@ -117,7 +105,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("scene", o.scene, "scene file (JSON), e.g. scenes/teapot.json")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--size", o.size, "override the resolution, WIDTHxHEIGHT (e.g. 1024x1024)");
+  cmd->add_option("--size", o.size, "override the resolution, WIDTHxHEIGHT (e.g. 1024x1024)")
+      ->check(size_check());
   cmd->add_option("--rotate", o.rotate_deg, "rotate the objects about the world y axis (degrees)")
       ->check(kAngle);
   cmd->add_flag("--specular-only", o.specular_only,
@@ -132,10 +121,9 @@ Scene load(const SceneOptions& o) {
   if (o.no_depth_buffer || o.small_part) s.depth_buffer = false;
   if (o.small_part) s.small_part_frame = true;
   if (!o.size.empty()) {
-    const std::optional<Size> size = parse_size(o.size);
-    if (!size) throw CLI::ValidationError("--size", size_expected(o.size));
-    s.width = size->width;
-    s.height = size->height;
+    const Size size = parse_size(o.size).value();  // checked as the option was read (size_check)
+    s.width = size.width;
+    s.height = size.height;
   }
   return s;
 }
@@ -416,12 +404,6 @@ int run_stress(const StressCli& cli) {
     list_cases();
     return 0;
   }
-  try {
-    for (const std::string& m : cli.options.methods) (void)method_from_name(m);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "tinyphong stress: --methods: " << e.what() << "\n";
-    return 2;
-  }
   const auto results = stress::run(cli.options, [](const stress::Result& r) {
     std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
               << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
@@ -456,7 +438,8 @@ void add_stress(CLI::App& app, StressCli& cli) {
       "with a verdict against its documented bound (docs/STABILITY.md)");
   cmd->add_flag("--quick", cli.options.quick, "only the quick subset (what the CTest runs)");
   cmd->add_option("--methods", cli.options.methods, "comma-separated methods (default: all)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(method_check());
   cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
   cmd->add_option("--seed", cli.options.seed,
                   "seed of the cases' random parts (the bounds are the default seed's)")
@@ -483,7 +466,7 @@ int main(int argc, char** argv) {
   auto* render = app.add_subcommand("render", "render a scene with the emulated device");
   add_scene_options(render, render_opts);
   render->add_option("--method,-m", render_opts.method, "shading method (see `tinyphong methods`)")
-      ->check(kMethod);
+      ->check(method_check());
   add_budget_option(render, render_opts);
   add_depth_buffer_option(render, render_opts);
   render->add_option("-o,--output", render_out, "PNG file to write");
@@ -521,13 +504,14 @@ int main(int argc, char** argv) {
   record->add_option("scenes", rec.scenes, "scene file(s) (JSON)")
       ->required()
       ->check(CLI::ExistingFile);
-  record->add_option("--size", rec.options.size, "override the resolution, WIDTHxHEIGHT");
+  record->add_option("--size", rec.options.size, "override the resolution, WIDTHxHEIGHT")
+      ->check(size_check());
   record
       ->add_option("--rotate", rec.options.rotate_deg,
                    "rotate the objects about the world y axis (degrees)")
       ->check(kAngle);
   record->add_option("--method,-m", rec.options.method, "shading method (see `tinyphong methods`)")
-      ->check(kMethod);
+      ->check(method_check());
   add_budget_option(record, rec.options);
   add_depth_buffer_option(record, rec.options);
   record->add_flag("--small-part", rec.options.small_part,
@@ -558,13 +542,7 @@ int main(int argc, char** argv) {
   StressCli stress_cli;
   add_stress(app, stress_cli);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11's own codes (105, 109, ...) are its internals: a bad option is exit status 2 for every
-    // subcommand; --help is 0.
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
@@ -581,8 +559,6 @@ int main(int argc, char** argv) {
   } catch (const SceneError& e) {
     std::cerr << "tinyphong: " << e.what() << "\n";
     return 1;
-  } catch (const CLI::Error& e) {  // an option refused after parsing (--size)
-    return app.exit(e) == 0 ? 0 : 2;
   } catch (const std::exception& e) {
     std::cerr << "tinyphong: " << e.what() << "\n";
     return 1;

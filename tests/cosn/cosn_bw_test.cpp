@@ -38,7 +38,7 @@ double lookup_error(int n, int size) {
   return worst;
 }
 
-// Measured by this test (build/h2/tests/cosn/cosn_bw_test, printed below), 2026-11-22:
+// Measured by this test (build/release/tests/cosn/cosn_bw_test, printed below), 2026-11-22:
 // 1 KiB: worst 1.106 % over n <= 20 (n = 20); 8 KiB: worst 1.060 % over the n listed (164).
 // The paper's "< 1 %" is the addressing error alone, n/(2(N−1)): 0.98 % and 1.00 %; the
 // 8-bit entries add up to 1/510 = 0.20 %. Pinned with 0.05 points of margin.

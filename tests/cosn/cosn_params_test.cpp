@@ -26,9 +26,9 @@ CosnParams table_params(int n) {
   return {p.a, p.b};
 }
 
-// Limits pinned from `build/h2/bench/accuracy_cosn` (2026-11-22), margin to the brief's targets:
-// closed form max 2.449 % at n = 1, 1.812 % at n = 2, 1.469 % over 3..10,000 (n = 12).
-// n = 2 cannot meet 1.5 %: the minimax optimum of f itself is 1.765 % there.
+// Limits pinned from `build/release/bench/accuracy_cosn` (2026-11-22), margin to the brief's
+// targets: closed form max 2.449 % at n = 1, 1.812 % at n = 2, 1.469 % over 3..10,000 (n = 12). n =
+// 2 cannot meet 1.5 %: the minimax optimum of f itself is 1.765 % there.
 double closed_limit(int n) { return n == 1 ? 0.025 : (n == 2 ? 0.0185 : 0.015); }
 
 TEST(CosnParams, ClosedFormWithinTargetForEveryN) {
@@ -54,7 +54,7 @@ TEST(CosnParams, EverySourceHasValidCoefficients) {
 }
 
 // The paper's formulas are a least-squares fit for n <= 125; beyond, b tends to 0.2 while the
-// optimum shrinks like 1/√n. Measured (build/h2/bench/accuracy_cosn, 2026-11-22): 5.23 % at
+// optimum shrinks like 1/√n. Measured (build/release/bench/accuracy_cosn, 2026-11-22): 5.23 % at
 // n = 1, 1.46 % at n = 20, 5.56 % at n = 125, 38.6 % at n = 1000, 72.8 % at n = 10,000.
 TEST(CosnParams, PaperFormulasDegradePast125) {
   EXPECT_LT(err_of(paper_params(1), 1), 0.055);

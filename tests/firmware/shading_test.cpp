@@ -233,7 +233,7 @@ Scene point_light_scene() {
 const glm::dmat4 kView = glm::lookAt(dvec3(0.3, -0.4, 2.5), dvec3(0, 0, 0), dvec3(0, 1, 0));
 const glm::dmat4 kPerspective = glm::perspective(0.9, 96.0 / 80.0, 0.5, 10.0);
 
-// Bounds: measured with ./build/h3/tests/firmware/firmware_shading_test (the printed lines:
+// Bounds: measured with ./build/release/tests/firmware/firmware_shading_test (the printed lines:
 // "method M snap S: P pixels, max |diff| D levels, K pixels off"), then pinned with margin.
 // Against a double computation from the same snapped vertex positions the device is off by at
 // most one level, on the few pixels whose double value lies near a rounding boundary

@@ -1,5 +1,5 @@
 // Accuracy bounds over the shared input sets (measure.hpp), in LSB of the output format.
-// Where the bounds come from: `build/h1-rel/bench/accuracy_fixedpoint` (the table in
+// Where the bounds come from: `build/release/bench/accuracy_fixedpoint` (the table in
 // docs/ACCURACY.md) measured max |err| = 0.5000000 for every case below: div, mul_sat, sqrt,
 // dot and cross are correctly rounded by construction, rsqrt and normalize by a Q2.62 Newton
 // mantissa whose ~2^-59 relative error is < 2^-27 LSB for outputs of <= 32 bits. The pinned

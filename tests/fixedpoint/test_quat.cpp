@@ -2,7 +2,7 @@
 // double over fixed-seed random unit vectors (tests/fixedpoint/measure_quat.hpp, the same sets
 // as the docs/ACCURACY.md rows).
 //
-// Where the bounds come from: the quaternion rows of `build/h7-rel/bench/accuracy_fixedpoint`
+// Where the bounds come from: the quaternion rows of `build/release/bench/accuracy_fixedpoint`
 // (configure/build command in docs/ACCURACY.md, "Fixed-point functions"; same input sets, from
 // measure_quat.hpp) and, for the subsets only this file uses (other epsilons, smaller n), the
 // same measure_* functions run on those subsets. The code is integer-exact, so Debug, Release

@@ -1,5 +1,5 @@
 // CORDIC accuracy bounds over the shared input sets (measure_trig.hpp), in LSB of the output.
-// Where the bounds come from: `build/h1-rel/bench/accuracy_fixedpoint` measured max |err| =
+// Where the bounds come from: `build/release/bench/accuracy_fixedpoint` measured max |err| =
 // 0.5018784 (sin_cos, 32-bit set), 0.5009528 (atan2), 0.5000000 (to_polar magnitude),
 // 0.5009300 (acos_unit): 0.5 of output rounding plus the residual angle of 40 CORDIC steps
 // (< 2^-39 rad = 0.002 LSB of Q1.30). Pinned at 0.503 (margin 0.001 LSB over the worst).

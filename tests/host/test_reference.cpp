@@ -87,7 +87,7 @@ TEST(Reference, FlatQuadUnderAPointLightMatchesTheClosedForm) {
 TEST(Reference, FineSphereMatchesTheAnalyticSphere) {
   // Octahedron subdivided 5× (8192 triangles) vs the exact sphere normal (x, y, √(1−x²−y²))
   // at pixel centres with r < 0.9. Measured max |Δ| (linear intensity) 0.00179 at 128×128
-  // (build/h4m/tests/host/host_reference_test prints it); pinned at 0.005 (2.8× margin).
+  // (build/release/tests/host/host_reference_test prints it); pinned at 0.005 (2.8× margin).
   FrameSetup f = ortho_frame(128, 128, 1.25);
   f.lights = {{LightKind::Point, 4.0 * glm::normalize(glm::dvec3(1, 1.2, 1.5)), {1, 1, 1}}};
   const Mesh s = octa_sphere(5);

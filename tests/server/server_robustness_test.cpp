@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <mutex>
+#include <optional>
 
 #include "server/protocol.hpp"
 #include "server_process.hpp"
@@ -23,22 +24,33 @@ std::vector<std::string> pattern_args(std::vector<std::string> extra = {}, int w
   return a;
 }
 
+// Reads until the next frame arrives (skipping text messages) and acks it; returns its kind, or
+// nothing when the connection ends or `end` passes first.
+std::optional<tp::server::FrameKind> next_frame(WsClient& c, Clock::time_point end) {
+  while (Clock::now() < end) {
+    Message m =
+        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
+    if (!m.ok) return std::nullopt;
+    if (!m.binary) continue;
+    tp::server::EncodedFrame h;
+    EXPECT_TRUE(tp::server::decode_header(
+        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
+    c.ack(m.data);
+    return h.kind;
+  }
+  return std::nullopt;
+}
+
 // Reads until n device frames arrived (acking each); returns how many did within the timeout.
 int read_frames(WsClient& c, int n, std::chrono::milliseconds timeout,
                 std::vector<double>* gaps_ms = nullptr) {
   const auto end = Clock::now() + timeout;
   int got = 0;
   auto last = Clock::now();
-  while (got < n && Clock::now() < end) {
-    Message m =
-        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
-    if (!m.ok) break;
-    if (!m.binary) continue;
-    tp::server::EncodedFrame h;
-    EXPECT_TRUE(tp::server::decode_header(
-        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
-    c.ack(m.data);
-    if (h.kind != tp::server::FrameKind::device) continue;
+  while (got < n) {
+    const std::optional<tp::server::FrameKind> kind = next_frame(c, end);
+    if (!kind) break;
+    if (*kind != tp::server::FrameKind::device) continue;
     const auto now = Clock::now();
     if (gaps_ms && got > 0)
       gaps_ms->push_back(std::chrono::duration<double, std::milli>(now - last).count());
@@ -57,16 +69,10 @@ FrameCounts count_frames(WsClient& c, std::chrono::milliseconds timeout,
                          bool until_reference = false) {
   FrameCounts n;
   const auto end = Clock::now() + timeout;
-  while (Clock::now() < end && !(until_reference && n.reference > 0)) {
-    Message m =
-        c.read(std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + 1ms);
-    if (!m.ok) break;
-    if (!m.binary) continue;
-    tp::server::EncodedFrame h;
-    EXPECT_TRUE(tp::server::decode_header(
-        {reinterpret_cast<const std::uint8_t*>(m.data.data()), m.data.size()}, h));
-    c.ack(m.data);
-    (h.kind == tp::server::FrameKind::device ? n.device : n.reference)++;
+  while (!(until_reference && n.reference > 0)) {
+    const std::optional<tp::server::FrameKind> kind = next_frame(c, end);
+    if (!kind) break;
+    (*kind == tp::server::FrameKind::device ? n.device : n.reference)++;
   }
   return n;
 }

@@ -1,0 +1,53 @@
+// The options that the CLI, the server and the bench programs take alike, checked as CLI11
+// options: a bad value is refused as the option it is, with exit status 2, before any scene file
+// is read (a bad method was once blamed on the scene file's line 0, and a bench program aborted
+// on it). Each program had its own copy of the method check until 2026-12-07.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "host/device_renderer.hpp"
+#include "host/size_text.hpp"
+
+namespace tp::host {
+
+// A shading method's name as `tinyphong methods` lists it; the refusal names the valid ones.
+inline CLI::Validator method_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          (void)method_from_name(text);
+          return "";
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+      },
+      "METHOD");
+}
+
+// WIDTHxHEIGHT within the device's viewport (parse_size).
+inline CLI::Validator size_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return parse_size(text) ? std::string() : size_expected(text);
+      },
+      "WxH");
+}
+
+// Parses the command line. Returns the exit status when the program should stop here: 0 after
+// --help, 2 for a bad option (CLI11's own codes, 105, 109 and so on, are its internals), and
+// nothing when the options are good.
+inline std::optional<int> parse_options(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  return std::nullopt;
+}
+
+}  // namespace tp::host

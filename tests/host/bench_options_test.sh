@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The bench programs' options on bad values, checked as the CLI's are (host/cli_options.hpp):
+# a bad method or size is refused as the option it is, with exit status 2, before any scene is
+# read. Found by review (2026-12-06): tinyphong-results aborted (SIGABRT) on a bad method, and
+# both programs read --size with sscanf, so that 4294967360x64 rendered at 64 x 64.
+# Usage: bench_options_test.sh TINYPHONG_DRAW TINYPHONG_RESULTS SCENES_DIR
+set -euo pipefail
+draw=$1 results=$2 scenes=$3
+tri=$scenes/triangle.json
+fail=0
+
+# exits STATUS TEXT ARGS...: the command must exit with STATUS and print TEXT.
+exits() {
+  local want=$1 text=$2 out status=0
+  shift 2
+  out=$("$@" 2>&1 >/dev/null) || status=$?
+  if [ "$status" -ne "$want" ] || ! grep -qF -- "$text" <<<"$out"; then
+    echo "FAIL: $* : status $status (want $want), output '$out'"; fail=1
+  else
+    echo "ok: $*"
+  fi
+}
+
+for size in 4294967360x64 10x20junk 0x10 4097x10 x; do
+  exits 2 "--size: expected WIDTHxHEIGHT, each 1..4096, got '$size'" "$draw" "$tri" --size "$size"
+  exits 2 "--size: expected WIDTHxHEIGHT, each 1..4096, got '$size'" \
+    "$results" --scenes triangle --size "$size"
+done
+exits 2 "--method: unknown shading method 'bogus'" "$draw" "$tri" --method bogus
+exits 2 "--methods: unknown shading method 'bogus'" "$results" --methods kb,bogus
+exits 2 "--frames" "$draw" "$tri" --frames 0
+exits 2 "--reps" "$results" --reps 0
+# A scene that does not load is the program's error, not an option's: exit status 1.
+exits 1 "no-such-scene" "$results" --scenes no-such-scene --methods flat --reps 1
+
+# Good values work: one frame at the given size, and a one-round table of two methods.
+out=$("$draw" "$tri" --method kb --size 32x16) ||
+  { echo "FAIL: tinyphong-draw --method kb --size 32x16 refused"; fail=1; }
+grep -qF "drew triangle (32x16, kb)" <<<"$out" ||
+  { echo "FAIL: tinyphong-draw drew something else: '$out'"; fail=1; }
+out=$("$results" --scenes triangle --methods flat --size 32x16 --reps 1) ||
+  { echo "FAIL: tinyphong-results --methods flat --size 32x16 refused"; fail=1; }
+grep -qE "^\| flat \|" <<<"$out" && grep -qE "^\| gouraud \|" <<<"$out" ||
+  { echo "FAIL: tinyphong-results' table lacks flat's or Gouraud's row: '$out'"; fail=1; }
+
+[ $fail -eq 0 ] && echo "bench option checks: all as expected"
+exit $fail
