@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "firmware/geometry.hpp"
 #include "firmware/kb/kb_methods.hpp"
 #include "firmware/raster.hpp"
+#include "host/cli_options.hpp"
 #include "host/device_renderer.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
@@ -206,7 +208,7 @@ int main(int argc, char** argv) {
   bool quick = false;
   app.add_option("--reps", reps, "timing rounds (median taken)")->check(CLI::Range(1, 100));
   app.add_flag("--quick", quick, "one light count and no sweep (smoke run)");
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> status = tp::host::parse_options(app, argc, argv)) return *status;
   const std::vector<std::string> scenes = {"sphere-32",       "sphere-40", "sphere-512",
                                            "dodecahedron-30", "triangle",  "teapot"};
   const std::vector<int> lights = quick ? std::vector<int>{1} : std::vector<int>{1, 2, 4, 8};
