@@ -1,7 +1,7 @@
-// The options that the CLI, the server and the bench programs take alike, checked as CLI11
-// options: a bad value is refused as the option it is, with exit status 2, before any scene file
-// is read (a bad method was once blamed on the scene file's line 0, and a bench program aborted
-// on it). Each program had its own copy of the method check until 2026-12-07.
+// The options that the CLI and the bench programs take alike, checked as CLI11 options: a bad
+// value is refused as the option it is, with exit status 2, before any scene file is read (a bad
+// method was once blamed on the scene file's line 0, and a bench program aborted on it). Each
+// program had its own copy of the method check until 2026-12-07.
 #pragma once
 
 #include <optional>

@@ -27,8 +27,8 @@ CosnParams table_params(int n) {
 }
 
 // Limits pinned from `build/release/bench/accuracy_cosn` (2026-11-22), margin to the brief's
-// targets: closed form max 2.449 % at n = 1, 1.812 % at n = 2, 1.469 % over 3..10,000 (n = 12). n =
-// 2 cannot meet 1.5 %: the minimax optimum of f itself is 1.765 % there.
+// targets: closed form max 2.449 % at n = 1, 1.812 % at n = 2, 1.469 % over 3..10,000 (n = 12).
+// n = 2 cannot meet 1.5 %: the minimax optimum of f itself is 1.765 % there.
 double closed_limit(int n) { return n == 1 ? 0.025 : (n == 2 ? 0.0185 : 0.015); }
 
 TEST(CosnParams, ClosedFormWithinTargetForEveryN) {
