@@ -12,7 +12,12 @@ Only device.cpp reads the mask: it is compiled once per image with the release b
 command for the m3-Os configuration, and linked with that build's other objects by its own
 link command (both from `ninja -t commands`), in a temporary folder; the build is not touched.
 Usage: python3 scripts/target-method-size.py [--build DIR] [--methods kb,kb-adaptive] [--keep DIR]
-(default build/release, built; --methods: one row, the base with those methods together)."""
+                                             [--fill BYTES]
+(default build/release, built; --methods: one row, the base with those methods together).
+--fill BYTES: which methods a part with BYTES of firmware code can link, chosen greedily: from the
+base (and the --methods, if given) it adds, one at a time, the method whose image is then the
+smallest, while the code stays within BYTES; a row per step (docs/TARGET.md, "What fits a part").
+It links every remaining method at every step: up to some 180 links, a few minutes."""
 import argparse, os, re, shlex, shutil, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -63,6 +68,35 @@ def replaced(argv, old, new):
     return [new if a == old else a for a in argv]
 
 
+def fill(budget, start, footprint, row, base_text, names, tmp):
+    """The greedy choice of --fill: a row for the start, then one per method added ("+ name"),
+    and a last line naming the cheapest method left out and its image's code."""
+    chosen = list(BASE) + [m for m in start if m not in BASE]
+    if start:
+        text, rodata = footprint("start", chosen, tmp)
+        row(" + ".join(start), text, rodata, base_text)
+        if text > budget:
+            print("the start alone is over %s bytes" % format(budget, ","))
+            return
+    while True:
+        best = None
+        for name in names:
+            if name not in chosen:
+                text, rodata = footprint("try", chosen + [name], tmp)
+                if best is None or text < best[1]:
+                    best = (name, text, rodata)
+        if best is None:
+            print("every method fits within %s bytes" % format(budget, ","))
+            return
+        if best[1] > budget:
+            print("left out: %d of %d methods; the cheapest next, %s, would make %s bytes (over %s)"
+                  % (len(names) - len(chosen), len(names), best[0], format(best[1], ","),
+                     format(budget, ",")))
+            return
+        chosen.append(best[0])
+        row("+ " + best[0], best[1], best[2], base_text)
+
+
 def main():
     parser = argparse.ArgumentParser(description="Firmware code by method, Cortex-M3 -Os "
                                      "(docs/TARGET.md, \"Code by method\").")
@@ -72,7 +106,11 @@ def main():
                         "methods together (what a port that ships them links)")
     parser.add_argument("--keep", metavar="DIR",
                         help="copy the images linked (NAME.elf, NAME.map) into DIR")
+    parser.add_argument("--fill", metavar="BYTES", type=int,
+                        help="add methods greedily while the code stays within BYTES")
     args = parser.parse_args()
+    if args.fill is not None and args.fill <= 0:
+        sys.exit("target-method-size.py: --fill: a number of bytes above 0")
     target_dir = os.path.join(ROOT, args.build, "target")
     image = "%s-kb.elf" % CONFIG
     if not os.path.exists(os.path.join(target_dir, image)):
@@ -123,6 +161,9 @@ def main():
         print("|---|---:|---:|---:|")
         print("| base: %s | %s | | %s |" % (" + ".join(BASE), format(base_text, ","),
                                              format(base_rodata, ",")))
+        if args.fill is not None:
+            fill(args.fill, chosen or [], footprint, row, base_text, [n for n, _ in ids], tmp)
+            return
         if chosen is not None:
             names = list(BASE) + [m for m in chosen if m not in BASE]
             row(" + ".join(chosen), *footprint("chosen", names, tmp), base_text)
