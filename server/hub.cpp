@@ -24,14 +24,20 @@ void Hub::join(const std::shared_ptr<WsSession>& s) {
   if (ref && dev && ref->id == dev->id) s->offer_frame(ref);
 }
 
+std::vector<std::shared_ptr<WsSession>> Hub::live_sessions_locked() {
+  std::vector<std::shared_ptr<WsSession>> live;
+  for (auto& w : sessions_)
+    if (auto s = w.lock()) live.push_back(std::move(s));
+  return live;
+}
+
 void Hub::publish_frame(FramePtr f) {
   std::vector<std::shared_ptr<WsSession>> targets;
   {
     std::lock_guard lk(m_);
     if (closing_) return;  // shutting down: clients only get their close frame now
     (f->kind == FrameKind::device ? latest_device_ : latest_reference_) = f;
-    for (auto& w : sessions_)
-      if (auto s = w.lock()) targets.push_back(std::move(s));
+    targets = live_sessions_locked();
   }
   for (auto& s : targets) s->offer_frame(f);
 }
@@ -41,8 +47,7 @@ void Hub::forget_reference() {
   {
     std::lock_guard lk(m_);
     latest_reference_.reset();
-    for (auto& w : sessions_)
-      if (auto s = w.lock()) targets.push_back(std::move(s));
+    targets = live_sessions_locked();
   }
   for (auto& s : targets) s->drop_reference();
 }
@@ -52,8 +57,7 @@ void Hub::broadcast_text(TextPtr msg, bool droppable) {
   {
     std::lock_guard lk(m_);
     if (closing_) return;
-    for (auto& w : sessions_)
-      if (auto s = w.lock()) targets.push_back(std::move(s));
+    targets = live_sessions_locked();
   }
   for (auto& s : targets) s->offer_text(msg, droppable);
 }
@@ -71,8 +75,7 @@ void Hub::close_all() {
   {
     std::lock_guard lk(m_);
     closing_ = true;
-    for (auto& w : sessions_)
-      if (auto s = w.lock()) targets.push_back(std::move(s));
+    targets = live_sessions_locked();
   }
   for (auto& s : targets) s->close_going_away();
 }

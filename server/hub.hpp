@@ -30,6 +30,9 @@ class Hub {
   FramePtr latest_device();
 
  private:
+  // The sessions still open, taken with m_ held, to be called after it is released.
+  std::vector<std::shared_ptr<WsSession>> live_sessions_locked();
+
   std::mutex m_;
   std::vector<std::weak_ptr<WsSession>> sessions_;
   FramePtr latest_device_, latest_reference_;

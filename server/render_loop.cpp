@@ -9,6 +9,7 @@
 
 #include "firmware/cosn.hpp"
 #include "host/metrics.hpp"
+#include "host/to_fixed.hpp"
 
 namespace tp::server {
 
@@ -101,12 +102,10 @@ void RenderLoop::publish_state() {
   }
   // Without the material's own (a, b), the pair the device derives from n (its closed form, the
   // Kuijk-Blake methods' f): the page shows it, so that choosing (a, b) starts from what renders.
-  const auto radians = [](fw::cosn::angle_t x) {
-    return static_cast<double>(x.raw()) / static_cast<double>(fw::cosn::angle_t::one_raw);
-  };
   const fw::cosn::CosnParams derived = fw::cosn::least_squares_params(static_cast<int>(s.n));
   const std::pair<double, double> shown_ab =
-      s.use_ab ? std::pair{s.a, s.b} : std::pair{radians(derived.a), radians(derived.b)};
+      s.use_ab ? std::pair{s.a, s.b}
+               : std::pair{host::to_double(derived.a), host::to_double(derived.b)};
   json j = {{"type", "state"},
             {"scene", s.scene},
             {"method", s.method},
