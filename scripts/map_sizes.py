@@ -5,8 +5,8 @@ vector table, summed from the input sections of its GNU ld link map; the streams
 Prints one line per (section, origin): section, origin, bytes; then what a part's flash holds in
 all (the stream table left out). Used by scripts/target-size.sh
 (docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()),
-scripts/target-code-heat.py and scripts/target-setup-split.py (input_sections() and origin_of())
-and tests/target/check_budget.sh.
+scripts/target-code-heat.py and scripts/target-setup-split.py (input_sections() and
+origin_of()), tests/target/check_budget.sh, check_code_heat.sh and check_setup_split.sh.
 Usage: python3 scripts/map_sizes.py IMAGE.map"""
 import re, sys
 

@@ -18,6 +18,8 @@ if [ -z "$code" ] || [ "$code" != "$want" ]; then
 fi
 neither=$(sed -n 's/^  reached from neither: \([0-9]*\) bytes.*/\1/p' <<<"$table")
 [ "$neither" = 0 ] || { echo "FAIL: ${neither:-no figure for the} bytes reached from neither side"; exit 1; }
+listed=$(awk '$1 ~ /^(device|setup|neither)$/ { sum += $2 } END { print sum + 0 }' <<<"$table")
+[ "$listed" = "$code" ] || { echo "FAIL: the listed functions hold $listed bytes, not $code"; exit 1; }
 side() {  # side FUNCTION-PREFIX WANT: every listed function whose name starts so is on WANT's side
   local found
   # a list line is "SIDE BYTES NAME": NAME starts after the two fields and their spaces
