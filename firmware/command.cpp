@@ -164,6 +164,8 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
       return upload_indices(p[0], p.subspan(2));
     }
     case Opcode::kClear:
+      // 0x00RRGGBB: a top byte set is a malformed command, as a flag beyond its bits is.
+      if (p[0] > 0xffffffu) return fail(Error::kBadArgument);
       return clear(Rgb8{static_cast<std::uint8_t>(p[0] >> 16), static_cast<std::uint8_t>(p[0] >> 8),
                         static_cast<std::uint8_t>(p[0])});
     case Opcode::kDraw: return draw(DrawCmd{p[0], p[1]});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -170,8 +171,8 @@ void CommandWriter::end_frame() { header(fw::Opcode::kEndFrame, 0); }
 
 std::string opcode_name(std::uint32_t opcode) { return payload_name(opcode); }
 
-StreamError::StreamError(std::size_t offset, std::uint32_t op, fw::Error e)
-    : std::runtime_error(stream_message(offset, op, e)),
+StreamError::StreamError(std::size_t offset, std::uint32_t op, fw::Error e, const std::string& note)
+    : std::runtime_error(stream_message(offset, op, e) + (note.empty() ? "" : " (" + note + ")")),
       word_offset(offset),
       opcode(op),
       error(e) {}
@@ -183,47 +184,79 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
   throw StreamError(at, at < words.size() ? words[at] & 0xffffu : 0u, e);
 }
 
-std::size_t memory_for_stream(std::span<const std::uint32_t> words) {
-  // Without a viewport command the 1x1 block's depth region is one word with or without a
-  // depth buffer; with any, a viewport that keeps the buffer needs it.
-  fw::ViewportCmd vp{1, 1, fw::PixelFormat::kRgb888, false, false};
-  fw::BufferCapacityCmd cap{0, 0};
+namespace {
+
+// The layout-changing commands' values as the device accepts them (Device::set_viewport,
+// set_buffer_capacity and set_method, execute_one's decoding), but for the memory check itself.
+bool accepted_viewport(std::span<const std::uint32_t> p, fw::ViewportCmd& vp) {
+  if (p[0] == 0 || p[1] == 0 || p[0] > fw::kMaxDimension || p[1] > fw::kMaxDimension ||
+      (p[2] != static_cast<std::uint32_t>(fw::PixelFormat::kRgb888) &&
+       p[2] != static_cast<std::uint32_t>(fw::PixelFormat::kRgb565)) ||
+      p[3] > 3u)  // flags: bit 0 write counts, bit 1 no depth buffer, no other
+    return false;
+  vp = fw::ViewportCmd{p[0], p[1], static_cast<fw::PixelFormat>(p[2]), (p[3] & 1u) != 0,
+                       (p[3] & 2u) == 0};
+  return true;
+}
+
+bool accepted_capacity(std::span<const std::uint32_t> p, fw::BufferCapacityCmd& cap) {
+  if (p[0] > (1u << 24) || p[1] > (1u << 26)) return false;
+  cap = fw::BufferCapacityCmd{p[0], p[1]};
+  return true;
+}
+
+bool accepted_method(std::span<const std::uint32_t> p, fw::Method& m) {
+  const auto id = static_cast<fw::Method>(p[0]);
+  if (fw::Device::method_bytes(id) == 0) return false;  // not linked, or no such method
+  m = id;
+  return true;
+}
+
+}  // namespace
+
+StreamMemory memory_for_stream(std::span<const std::uint32_t> words, std::size_t limit) {
+  // A fresh device's state (DeviceState's defaults): no viewport, no buffers, Gouraud.
+  fw::ViewportCmd vp;
+  fw::BufferCapacityCmd cap;
+  fw::Method method = fw::Method::kGouraud;
+  StreamMemory need{fw::Device::memory_required(vp, cap, method)};
   for (std::size_t at = 0; at < words.size();) {
     const std::uint32_t op = words[at] & 0xffffu, len = words[at] >> 16;
     if (len > words.size() - at - 1) break;
     const auto p = words.subspan(at + 1, len);
-    // Out-of-range values are the device's to refuse: only plausible ones size the block.
-    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetViewport) && len == 4 &&
-        p[0] <= fw::kMaxDimension && p[1] <= fw::kMaxDimension) {
-      vp.width = std::max(vp.width, p[0]);
-      vp.height = std::max(vp.height, p[1]);
-      vp.write_count = vp.write_count || (p[3] & 1u) != 0;
-      vp.depth_buffer = vp.depth_buffer || (p[3] & 2u) == 0;
-    }
-    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2 &&
-        p[0] <= (1u << 24) && p[1] <= (1u << 26)) {
-      cap.max_vertices = std::max(cap.max_vertices, p[0]);
-      cap.max_indices = std::max(cap.max_indices, p[1]);
+    bool changed = false;
+    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetViewport) && len == 4)
+      changed = accepted_viewport(p, vp);
+    else if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2)
+      changed = accepted_capacity(p, cap);
+    else if (op == static_cast<std::uint32_t>(fw::Opcode::kSetMethod) && len == 1)
+      changed = accepted_method(p, method);
+    if (changed) {
+      const std::size_t bytes = fw::Device::memory_required(vp, cap, method);
+      if (bytes > limit) {
+        need.over_at = at;
+        need.over_bytes = bytes;
+        break;
+      }
+      need.bytes = std::max(need.bytes, bytes);
     }
     at += 1 + std::size_t{len};
   }
-  return fw::Device::memory_required(vp, cap);
-}
-
-namespace {
-std::size_t replay_block_bytes(std::span<const std::uint32_t> words, std::size_t max_memory) {
-  const std::size_t need = memory_for_stream(words);
-  if (need > max_memory)
-    throw std::runtime_error("the stream's viewport and buffer capacity need " +
-                             std::to_string(need) + " bytes of device memory, more than replay's " +
-                             "limit of " + std::to_string(max_memory));
   return need;
 }
-}  // namespace
 
 StreamReplay::StreamReplay(std::span<const std::uint32_t> words, std::size_t max_memory)
-    : memory_(replay_block_bytes(words, max_memory)), device_(std::span<std::byte>(memory_)) {
-  run_stream(device_, words);
+    : need_(memory_for_stream(words, max_memory)),
+      memory_(need_.bytes),
+      device_(std::span<std::byte>(memory_)) {
+  try {
+    run_stream(device_, words);
+  } catch (const StreamError& e) {
+    if (e.error != fw::Error::kOutOfMemory || e.word_offset != need_.over_at) throw;
+    throw StreamError(e.word_offset, e.opcode, e.error,
+                      "it needs " + std::to_string(need_.over_bytes) +
+                          " bytes, more than replay's limit of " + std::to_string(max_memory));
+  }
   if (!device_.state().viewport_set)
     throw std::runtime_error("the stream sets no viewport: no image");
 }
@@ -245,11 +278,40 @@ std::vector<std::uint32_t> read_command_file(const std::string& path) {
   return words;
 }
 
-void write_command_file(const std::string& path, std::span<const std::uint32_t> words) {
-  std::ofstream f(path, std::ios::binary);
+namespace {
+void write_words(const std::string& file, const std::string& path,
+                 std::span<const std::uint32_t> words) {
+  std::ofstream f(file, std::ios::binary);
   f.write(reinterpret_cast<const char*>(words.data()),
           static_cast<std::streamsize>(words.size_bytes()));
+  f.close();
   if (!f) throw std::runtime_error(path + ": cannot write");
+}
+}  // namespace
+
+void write_command_file(const std::string& path, std::span<const std::uint32_t> words) {
+  // A new or regular file is written beside it and renamed over it, so that a write that fails
+  // part-way (a full disk) leaves the file that was there, not a stream cut short; anything else
+  // (a symbolic link, /dev/stdout, a pipe) is written through, as it is.
+  std::error_code e;
+  const auto kind = std::filesystem::symlink_status(path, e).type();
+  if (kind != std::filesystem::file_type::not_found &&
+      kind != std::filesystem::file_type::regular) {
+    write_words(path, path, words);
+    return;
+  }
+  const std::string part = path + ".part";
+  try {
+    write_words(part, path, words);
+  } catch (const std::runtime_error&) {
+    std::filesystem::remove(part, e);
+    throw;
+  }
+  std::filesystem::rename(part, path, e);
+  if (e) {
+    std::filesystem::remove(part, e);
+    throw std::runtime_error(path + ": cannot write");
+  }
 }
 
 std::uint64_t framebuffer_hash(const fw::FramebufferView& fb) {

@@ -54,7 +54,9 @@ std::string_view error_name(fw::Error e);
 // A command the device refused: where (word offset of its header), which, and why.
 class StreamError : public std::runtime_error {
  public:
-  StreamError(std::size_t word_offset, std::uint32_t opcode, fw::Error error);
+  // `note`, if given, follows the device's error in the message.
+  StreamError(std::size_t word_offset, std::uint32_t opcode, fw::Error error,
+              const std::string& note = {});
   std::size_t word_offset;
   std::uint32_t opcode;  // 0 if the stream ended inside the header's payload
   fw::Error error;
@@ -63,17 +65,29 @@ class StreamError : public std::runtime_error {
 // Runs `words` through Device::execute; throws StreamError at the first failing command.
 void run_stream(fw::Device& device, std::span<const std::uint32_t> words);
 
-// The memory block a fresh device needs for this stream: the largest viewport and buffer
-// capacity its commands set (at least a 1x1 viewport, so that a stream without one still
-// reaches the device and fails there with kNoViewport). Malformed headers end the scan; the
-// device then reports them.
-std::size_t memory_for_stream(std::span<const std::uint32_t> words);
+// The memory block a fresh device needs for this stream. The device's layout is followed command
+// by command, as the device takes it: the viewport, buffer capacity and method that each
+// set_viewport, set_buffer_capacity and set_method with values the device accepts leaves in
+// force, each such state needing Device::memory_required(viewport, capacity, method), the
+// device's own check. `bytes` is the largest need of the fresh device's state and of every state
+// before the first that needs more than `limit`; given that block the device refuses that
+// state's command with kOutOfMemory at its word (`over_at`), unless an earlier command fails
+// first. A header whose payload runs past the stream ends the scan; the device reports it.
+struct StreamMemory {
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t bytes = 0;
+  std::size_t over_at = kNone;  // the word offset of the first command over `limit`, if any
+  std::size_t over_bytes = 0;   // what the state it sets needs
+};
+StreamMemory memory_for_stream(std::span<const std::uint32_t> words,
+                               std::size_t limit = static_cast<std::size_t>(-1));
 
-// A stream run through a fresh device, in a memory block of the size the stream asks for
-// (memory_for_stream): what `tinyphong replay`, the replay tests and the target tests' host
-// hashes do. The constructor throws std::runtime_error if that block would exceed max_memory
-// (a dozen words can ask for 2^24 vertices) or the stream sets no viewport (no frame), and
-// StreamError at the first command the device refuses.
+// A stream run through a fresh device, in a memory block of the size the stream needs
+// (memory_for_stream), at most max_memory: what `tinyphong replay`, the replay tests and the
+// target tests' host hashes do. The constructor throws StreamError at the first command the
+// device refuses, in stream order: a command whose state needs more than max_memory (a dozen
+// words can ask for 2^24 vertices) fails with kOutOfMemory, its message giving the bytes and the
+// limit; and std::runtime_error if the stream sets no viewport (no frame).
 class StreamReplay {
  public:
   // Well above what any frame of a scene file needs: a 4096 x 4096 viewport with the largest
@@ -84,6 +98,7 @@ class StreamReplay {
   const fw::Device& device() const { return device_; }
 
  private:
+  StreamMemory need_;
   std::vector<std::byte> memory_;
   fw::Device device_;
 };
@@ -93,6 +108,8 @@ class StreamReplay {
 // not a whole number of 32-bit words. A paper scene's frame is at most a few hundred KiB.
 inline constexpr std::size_t kMaxCommandFileBytes = std::size_t{64} << 20;
 std::vector<std::uint32_t> read_command_file(const std::string& path);
+// Throws std::runtime_error naming the file if it cannot be written; a regular file is replaced
+// whole or not at all (written to PATH.part, then renamed).
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words);
 
 // FNV-1a 64 of the framebuffer's colour bytes, row by row (no stride padding): the hash the

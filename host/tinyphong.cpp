@@ -280,13 +280,24 @@ int run_record(const RecordCli& cli) {
     std::cerr << "tinyphong record: give either -o FILE (one scene) or --dir DIR\n";
     return 2;
   }
+  std::vector<std::string> outs;
   for (const std::string& scene : cli.scenes) {
+    outs.push_back(cli.out.empty() ? (std::filesystem::path(cli.dir) /
+                                      (std::filesystem::path(scene).stem().string() + ".tpcmd"))
+                                         .string()
+                                   : cli.out);
+    // Two scenes of one name in different folders would write one file: refused before any is.
+    const auto same = std::find(outs.begin(), outs.end() - 1, outs.back());
+    if (same != outs.end() - 1) {
+      std::cerr << "tinyphong record: " << cli.scenes[static_cast<std::size_t>(same - outs.begin())]
+                << " and " << scene << " would both be recorded to " << outs.back() << "\n";
+      return 2;
+    }
+  }
+  for (std::size_t i = 0; i < cli.scenes.size(); ++i) {
     SceneOptions o = cli.options;
-    o.scene = scene;
-    record_one(o, cli.out.empty() ? (std::filesystem::path(cli.dir) /
-                                     (std::filesystem::path(scene).stem().string() + ".tpcmd"))
-                                        .string()
-                                  : cli.out);
+    o.scene = cli.scenes[i];
+    record_one(o, outs[i]);
   }
   return 0;
 }

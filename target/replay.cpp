@@ -11,6 +11,8 @@
 // prints, as the images with embedded streams do (target/main.cpp),
 //     stream FRAME.tpcmd HASH                        (FNV-1a 64, as `tinyphong replay --hash`)
 // or  stream FRAME.tpcmd error CODE at word OFFSET   (the offset in the whole file)
+// or, for a file that is not a whole number of words or cannot be read to its end, a message
+// naming it and no frame,
 // then the stack's high-water mark and "done"; exits with success iff the stream ran. With
 // FRAME.ppm it writes the frame as a binary PPM (RGB565 widened by bit replication, as the host's
 // PNG). --chunk sets the words read at a time (at most kMaxChunkWords): the tests cut the stream
@@ -114,21 +116,25 @@ std::size_t whole_commands(std::size_t count) {
 }
 
 // Where feeding a file stopped: the device's error and the word of the file it stopped at (kOk
-// and the file's length in words if every command ran), or a file that ends inside a word.
+// and the file's length in words if every command ran), or the bytes read before a read failed.
 struct Fed {
   Error error = Error::kOk;
   std::size_t word = 0;
-  bool whole_words = true;
+  bool read_all = true;
+  std::size_t bytes_read = 0;
 };
 
-// Feeds the file to the device chunk by chunk, up to the first command that fails.
-Fed feed(Device& device, int file, const Arguments& args) {
+// Feeds the file, `length` bytes (a whole number of words), to the device chunk by chunk, up to
+// the first command that fails.
+Fed feed(Device& device, int file, std::size_t length, const Arguments& args) {
   std::size_t bytes = 0;       // in words[], from its start
   std::size_t done_words = 0;  // of the file, executed before words[0]
+  std::size_t read = 0;        // of the file
   for (;;) {
     const std::size_t got = tp::target::read_file(file, reinterpret_cast<std::byte*>(words) + bytes,
                                                   4 * args.chunk_words);
     bytes += got;
+    read += got;
     const std::size_t whole = whole_commands(bytes / 4);
     if (whole > 0) {
       if (const Error e = device.execute(std::span<const std::uint32_t>(words, whole));
@@ -139,8 +145,9 @@ Fed feed(Device& device, int file, const Arguments& args) {
       std::memmove(words, words + whole, bytes);
     }
     if (got > 0) continue;
-    // The end of the file.
-    if (bytes % 4 != 0) return {Error::kOk, done_words, false};
+    // The end of the file, or a read that failed: a frame of the commands before it is not the
+    // file's frame.
+    if (read != length) return {Error::kOk, done_words, false, read};
     if (bytes == 0) return {Error::kOk, done_words};
     // A last command that the file cuts short: the device names the fault (its opcode or its
     // length), as it would in one call.
@@ -187,14 +194,33 @@ bool run(const Arguments& args) {
     write(": cannot open\n");
     return false;
   }
-  auto* device = new (device_storage) Device(std::span<std::byte>(block, sizeof block));
-  const Fed fed = feed(*device, file, args);
-  close_file(file);
-  bool ok = false;
-  if (!fed.whole_words) {
+  // As the host's replay (read_command_file): a file that ends inside a word runs nothing.
+  const int length = file_length(file);
+  if (length < 0 || length % 4 != 0) {
+    close_file(file);
     write("stream ");
     write(args.stream);
-    write(": not a whole number of 32-bit words (a truncated file?)\n");
+    if (length < 0) {
+      write(": cannot read its length\n");
+    } else {
+      write(": ");
+      write_dec(static_cast<std::uint64_t>(length));
+      write(" bytes is not a whole number of 32-bit words (a truncated file?)\n");
+    }
+    return false;
+  }
+  auto* device = new (device_storage) Device(std::span<std::byte>(block, sizeof block));
+  const Fed fed = feed(*device, file, static_cast<std::size_t>(length), args);
+  close_file(file);
+  bool ok = false;
+  if (!fed.read_all) {
+    write("stream ");
+    write(args.stream);
+    write(": read error after ");
+    write_dec(fed.bytes_read);
+    write(" of ");
+    write_dec(static_cast<std::uint64_t>(length));
+    write(" bytes\n");
   } else {
     ok = report_stream(args.stream, *device, fed.error, fed.word);
   }

@@ -12,6 +12,7 @@ constexpr int kSysClose = 0x02;
 constexpr int kSysWrite0 = 0x04;
 constexpr int kSysWrite = 0x05;
 constexpr int kSysRead = 0x06;
+constexpr int kSysFlen = 0x0c;
 constexpr int kSysGetCmdline = 0x15;
 constexpr int kSysExit = 0x18;
 // SYS_OPEN's modes, the index of the ISO C fopen mode in the semihosting specification's list.
@@ -68,6 +69,11 @@ bool command_line(char* buffer, std::size_t size) {
 int open_file(const char* path, bool for_writing) {
   return call_block(kSysOpen, address(path), for_writing ? kModeWriteBinary : kModeReadBinary,
                     std::strlen(path));
+}
+
+int file_length(int handle) {
+  const std::uintptr_t block[1] = {static_cast<std::uintptr_t>(handle)};
+  return call(kSysFlen, block);
 }
 
 std::size_t read_file(int handle, void* buffer, std::size_t size) {

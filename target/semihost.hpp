@@ -19,7 +19,10 @@ void write_hex64(std::uint64_t value);  // 16 lower-case hex digits, as hash_hex
 bool command_line(char* buffer, std::size_t size);
 // SYS_OPEN in binary mode, for reading or for writing (created or truncated): a handle, or -1.
 int open_file(const char* path, bool for_writing);
-// SYS_READ: the bytes read into buffer, at most `size`; 0 at the end of the file (or on error).
+// SYS_FLEN: the file's length in bytes, or -1 on an error.
+int file_length(int handle);
+// SYS_READ: the bytes read into buffer, at most `size`; 0 at the end of the file, and on an error
+// (which only the file's length then tells apart).
 std::size_t read_file(int handle, void* buffer, std::size_t size);
 // SYS_WRITE: whether all `size` bytes were written.
 bool write_file(int handle, const void* data, std::size_t size);

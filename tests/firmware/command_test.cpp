@@ -377,6 +377,10 @@ TEST(CommandStream, MalformedCommandsChangeNothing) {
                         {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 4});
   expect_stream_refused("viewport flag 2^31", Error::kBadArgument,
                         {command_header(Opcode::kSetViewport, 4), 8, 8, 0, 1u << 31});
+  expect_stream_refused("clear 0x01000000", Error::kBadArgument,
+                        {command_header(Opcode::kClear, 1), 0x01000000u});
+  expect_stream_refused("clear 0xffffffff", Error::kBadArgument,
+                        {command_header(Opcode::kClear, 1), 0xffffffffu});
   expect_stream_refused("method 10 (unassigned)", Error::kUnknownMethod,
                         {command_header(Opcode::kSetMethod, 1), 10});
   expect_stream_refused(

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command and a
 # refused value each give a message naming the file (and the word offset and the device's
-# error for the stream errors) and a non-zero exit, as does a stream asking for more than
-# replay's memory limit and a file over the limit of a command file; a good stream replays and
-# hashes.
+# error for the stream errors) and a non-zero exit, as does a command asking for more than
+# replay's memory limit (unless an earlier command fails first) and a file over the limit of a
+# command file; a good stream replays and hashes. And `tinyphong record`'s outputs: two scenes
+# of one name are refused, a failed write keeps the old stream, a symbolic link is written
+# through.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -47,9 +49,13 @@ cp "$work/good.tpcmd" "$work/wide.tpcmd"
 printf '\x88\x13\x00\x00' | dd of="$work/wide.tpcmd" bs=1 seek=4 conv=notrunc status=none
 expect refused-value "$work/wide.tpcmd" "wide.tpcmd: command set_viewport at word 0 failed: viewport too large"
 
-# Three words asking for 2^24 vertices and 2^26 indices: refused before anything is allocated.
+# Three words asking for 2^24 vertices and 2^26 indices: refused at that command, with what it
+# needs, before a block that large is allocated.
 printf '\x02\x00\x02\x00\x00\x00\x00\x01\x00\x00\x00\x04' > "$work/huge.tpcmd"
-expect huge-capacity "$work/huge.tpcmd" "huge.tpcmd: the stream's viewport and buffer capacity need [0-9]+ bytes of device memory, more than replay's limit"
+expect huge-capacity "$work/huge.tpcmd" "huge.tpcmd: command set_buffer_capacity at word 0 failed: out of device memory \(it needs [0-9]+ bytes, more than replay's limit of 1073741824\)"
+# The same after an unknown opcode: the stream's first fault is the one reported.
+{ printf '\x63\x00\x00\x00'; cat "$work/huge.tpcmd"; } > "$work/fault-first.tpcmd"
+expect fault-first "$work/fault-first.tpcmd" "fault-first.tpcmd: command unknown opcode 99 at word 0 failed: bad opcode"
 
 # A file over the limit of a command file (64 MiB; sparse, so it costs no disk), refused before
 # more of it is read: /dev/zero would otherwise be read until memory ran out. The files after it
@@ -60,6 +66,38 @@ status=0
 out=$("$tp" replay "$work/large.tpcmd" "$work/good.tpcmd" --hash 2>/dev/null) || status=$?
 if [ "$status" -eq 0 ] || ! grep -qE '^[0-9a-f]{16}  .*good.tpcmd$' <<<"$out"; then
   echo "FAIL: after a file over the limit, the next was not replayed (status $status): $out"; fail=1
+fi
+
+# record: two scenes whose files share a name would write one stream; refused, nothing written.
+mkdir -p "$work/a" "$work/b" "$work/dir"
+cp "$scenes/triangle.json" "$work/a/x.json"
+cp "$scenes/triangle.json" "$work/b/x.json"
+status=0
+out=$("$tp" record "$work/a/x.json" "$work/b/x.json" --dir "$work/dir" 2>&1 >/dev/null) || status=$?
+if [ "$status" != 2 ] || ! grep -q "a/x.json and .*b/x.json would both be recorded to .*dir/x.tpcmd" <<<"$out" ||
+   [ -n "$(ls -A "$work/dir")" ]; then
+  echo "FAIL: two scenes of one name: status $status, '$out', dir holds '$(ls -A "$work/dir")'"; fail=1
+else
+  echo "ok: two scenes of one name: $out"
+fi
+# record replaces a stream whole or not at all: a write that fails (here PATH.part cannot be
+# created) leaves the old file; a symbolic link is written through, not replaced.
+cp "$work/good.tpcmd" "$work/kept.tpcmd"
+mkdir "$work/kept.tpcmd.part"
+status=0
+out=$("$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
+if [ "$status" = 0 ] || ! grep -q "kept.tpcmd: cannot write" <<<"$out" ||
+   ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd"; then
+  echo "FAIL: a failed write: status $status, '$out', the old stream changed"; fail=1
+else
+  echo "ok: a failed write keeps the old stream: $out"
+fi
+ln -s "$work/target.tpcmd" "$work/link.tpcmd"
+"$tp" record "$scenes/triangle.json" --method gouraud --size 160x120 -o "$work/link.tpcmd" >/dev/null
+if [ ! -L "$work/link.tpcmd" ] || ! cmp -s "$work/good.tpcmd" "$work/target.tpcmd"; then
+  echo "FAIL: a symbolic link was replaced, or its target does not hold the stream"; fail=1
+else
+  echo "ok: a symbolic link is written through"
 fi
 
 [ $fail -eq 0 ] && echo "replay CLI errors: all as expected"

@@ -88,7 +88,8 @@ TEST(Replay, WithoutADepthBuffer) {
       DeviceRenderer a(160, 120), b(160, 120);
       a.set_scene(with);
       b.set_scene(without);
-      const std::size_t saved = memory_for_stream(a.record(0.0)) - memory_for_stream(b.record(0.0));
+      const std::size_t saved =
+          memory_for_stream(a.record(0.0)).bytes - memory_for_stream(b.record(0.0)).bytes;
       // The depth buffer less one row; the write counts the host turns on for coverage (one byte
       // a pixel, read_frame) more.
       EXPECT_EQ(saved, (160u * 120u - 160u) * 4u - 160u * 120u) << name;
@@ -100,7 +101,7 @@ TEST(Replay, WithoutADepthBuffer) {
 // A small part's frame (`record --small-part`; docs/TARGET.md, "A small part"): the stream's
 // set_viewport asks for RGB565 with no depth buffer and no write counts, and on a convex scene
 // each pixel is the RGB888 frame's truncated to 5-6-5 bits (widened back by bit replication, as
-// replay shows it). (replay itself sizes its block for RGB888, the larger: memory_for_stream.)
+// replay shows it).
 TEST(Replay, ASmallPartsFrame) {
   const auto widened = [](std::uint8_t v, int bits) {
     const unsigned q = v >> (8 - bits);
@@ -201,6 +202,104 @@ TEST(Replay, ChangedClearColourChangesTheHash) {
     if ((words[at] & 0xffffu) == static_cast<std::uint32_t>(fw::Opcode::kClear))
       words[at + 1] ^= 0x00800000u;
   EXPECT_NE(replay(words).hash, original);
+}
+
+// Streams of layout commands alone, as a hostile file may hold them.
+std::vector<std::uint32_t> viewport(std::uint32_t w, std::uint32_t h, std::uint32_t flags = 0) {
+  return {fw::command_header(fw::Opcode::kSetViewport, 4), w, h, 0u, flags};
+}
+std::vector<std::uint32_t> capacity(std::uint32_t vertices, std::uint32_t indices) {
+  return {fw::command_header(fw::Opcode::kSetBufferCapacity, 2), vertices, indices};
+}
+std::vector<std::uint32_t> method(fw::Method m) {
+  return {fw::command_header(fw::Opcode::kSetMethod, 1), static_cast<std::uint32_t>(m)};
+}
+std::vector<std::uint32_t> joined(std::initializer_list<std::vector<std::uint32_t>> parts) {
+  std::vector<std::uint32_t> all;
+  for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+  return all;
+}
+std::size_t required(std::uint32_t w, std::uint32_t h, std::uint32_t vertices = 0,
+                     std::uint32_t indices = 0, fw::Method m = fw::Method::kGouraud) {
+  return fw::Device::memory_required(fw::ViewportCmd{w, h},
+                                     fw::BufferCapacityCmd{vertices, indices}, m);
+}
+
+// The block follows the layout in stream order: a wide viewport and then a tall one need the
+// larger of the two, not a viewport as wide as the one and as tall as the other (16 Mi pixels).
+TEST(ReplayMemory, FollowsTheLayoutInStreamOrder) {
+  const auto words = joined({viewport(4096, 1), viewport(1, 4096)});
+  EXPECT_EQ(memory_for_stream(words).bytes, std::max(required(4096, 1), required(1, 4096)));
+  EXPECT_EQ(memory_for_stream(words).over_at, StreamMemory::kNone);
+  const StreamReplay r(words);
+  EXPECT_EQ(r.device().state().viewport.height, 4096u);
+}
+
+// The method in force is the one sized for, not the largest of all.
+TEST(ReplayMemory, SizesForTheMethodInForce) {
+  const auto gouraud = joined({viewport(160, 120)});
+  const auto flat = joined({viewport(160, 120), method(fw::Method::kFlat)});
+  const auto adaptive = joined({viewport(160, 120), method(fw::Method::kKuijkBlakeAdaptive)});
+  EXPECT_EQ(memory_for_stream(gouraud).bytes, required(160, 120));
+  EXPECT_EQ(memory_for_stream(flat).bytes, required(160, 120));  // Gouraud's came first
+  EXPECT_EQ(memory_for_stream(adaptive).bytes,
+            required(160, 120, 0, 0, fw::Method::kKuijkBlakeAdaptive));
+  EXPECT_GT(required(160, 120, 0, 0, fw::Method::kKuijkBlakeAdaptive), required(160, 120));
+}
+
+// A value the device refuses leaves the layout as it was, so it sizes nothing.
+TEST(ReplayMemory, RefusedValuesSizeNothing) {
+  const std::size_t fresh = memory_for_stream({}).bytes;
+  EXPECT_EQ(fresh, required(0, 0));
+  EXPECT_EQ(memory_for_stream(viewport(4097, 4096)).bytes, fresh);
+  EXPECT_EQ(memory_for_stream(viewport(4096, 4096, 4)).bytes, fresh);  // an unknown flag
+  EXPECT_EQ(memory_for_stream(capacity(1u << 25, 0)).bytes, fresh);
+  EXPECT_EQ(memory_for_stream(method(static_cast<fw::Method>(1000))).bytes, fresh);
+}
+
+// Each state within the limit replays, though the largest viewport and the largest capacity of
+// the stream together would not fit it.
+TEST(ReplayMemory, EachStateWithinTheLimitReplays) {
+  const auto words =
+      joined({capacity(2000, 0), viewport(1, 1), capacity(0, 0), viewport(300, 300)});
+  const std::size_t limit = std::max(required(0, 0, 2000, 0), required(300, 300));
+  ASSERT_GT(required(300, 300, 2000, 0), limit);
+  EXPECT_EQ(memory_for_stream(words, limit).bytes, limit);
+  const StreamReplay r(words, limit);
+  EXPECT_EQ(r.device().state().viewport.width, 300u);
+}
+
+// The first state over the limit fails at its command, with the device's out-of-memory error
+// and the bytes it needs; the block is what the states before it need.
+TEST(ReplayMemory, OverTheLimitFailsAtItsCommand) {
+  const auto words = joined({viewport(64, 64), capacity(1000, 3000), viewport(1024, 1024)});
+  const std::size_t limit = 1u << 20;
+  const StreamMemory need = memory_for_stream(words, limit);
+  EXPECT_EQ(need.bytes, required(64, 64, 1000, 3000));
+  EXPECT_EQ(need.over_at, 8u);
+  EXPECT_EQ(need.over_bytes, required(1024, 1024, 1000, 3000));
+  try {
+    const StreamReplay r(words, limit);
+    ADD_FAILURE() << "a stream over the limit replayed";
+  } catch (const StreamError& e) {
+    EXPECT_EQ(e.word_offset, 8u);
+    EXPECT_EQ(e.error, fw::Error::kOutOfMemory);
+    EXPECT_NE(std::string(e.what()).find("set_viewport at word 8 failed: out of device memory (it "
+                                         "needs " +
+                                         std::to_string(need.over_bytes) +
+                                         " bytes, more than replay's limit of 1048576)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A command that fails before the state over the limit is the one reported.
+TEST(ReplayMemory, AnEarlierFaultIsReportedFirst) {
+  const auto words = joined({{99u}, capacity(1u << 24, 1u << 26)});
+  EXPECT_EQ(memory_for_stream(words, StreamReplay::kMaxMemory).over_at, 1u);
+  const StreamError e = failure_of(words);
+  EXPECT_EQ(e.word_offset, 0u);
+  EXPECT_EQ(e.error, fw::Error::kBadOpcode);
 }
 
 class TempFile {

@@ -6,7 +6,8 @@
 # replay.cpp), also: the PPM it writes must hold the pixels of `tinyphong replay -o` (its PNG read
 # back by oiiotool); the first STREAM cut inside a command past its middle, and with that
 # command's opcode made unknown, read 5 words at a time, must stop at the word where the host's
-# replay stops, with the device's error code; a missing file and a bad --chunk must fail.
+# replay stops, with the device's error code; a missing file, a partial word, a failing read and
+# a bad --chunk must fail.
 set -uo pipefail
 all=0
 if [ "${1:-}" = --all ]; then
@@ -79,6 +80,20 @@ done
 run "$work/missing.tpcmd"
 expect "a missing file: cannot open, failure" \
   test "$status" = 1 -a "$(grep -c "missing.tpcmd: cannot open" <<<"$out")" = 1
+# A file that ends inside a word runs nothing, as on the host; a read that fails (a directory:
+# QEMU opens it, gives its length, and its reads fail) is not taken for the file's end.
+head -c -2 "$1" > "$work/partial.tpcmd"
+run "$work/partial.tpcmd"
+expect "a partial word: refused before any command runs, failure" \
+  test "$status" = 1 -a "$(grep -c "partial.tpcmd: [0-9]* bytes is not a whole number of 32-bit words" <<<"$out")" = 1 -a \
+       "$(grep -c "^stream .* error\|^stream [^ ]* [0-9a-f]\{16\}$" <<<"$out")" = 0
+mkdir -p "$work/a-directory"
+size=$(stat -c %s "$work/a-directory")
+want="a-directory: read error after 0 of $size bytes"
+[ $((size % 4)) = 0 ] || want="a-directory: $size bytes is not a whole number of 32-bit words"
+run "$work/a-directory"
+expect "a read that fails: '$want', failure" \
+  test "$status" = 1 -a "$(grep -c "$want" <<<"$out")" = 1
 run "$1" --chunk 0
 expect "--chunk 0: refused, failure" \
   test "$status" = 1 -a "$(grep -c "^--chunk: a count of words" <<<"$out")" = 1
