@@ -15,32 +15,6 @@ std::int32_t as_signed(std::uint32_t w) {
 q15_16 q16(std::uint32_t w) { return q15_16::from_raw(as_signed(w)); }
 q1_30 q30(std::uint32_t w) { return q1_30::from_raw(as_signed(w)); }
 
-// Fixed payload lengths; 0xffff marks the variable-length uploads.
-constexpr std::uint32_t kVariable = 0xffff;
-std::uint32_t payload_words(Opcode op) {
-  switch (op) {
-    case Opcode::kSetViewport: return 4;
-    case Opcode::kSetBufferCapacity: return 2;
-    case Opcode::kSetModelView:
-    case Opcode::kSetProjection: return 16;
-    case Opcode::kSetEye:
-    case Opcode::kSetMethod:
-    case Opcode::kSetCulling:
-    case Opcode::kSetDepthTest:
-    case Opcode::kSetBudget:
-    case Opcode::kClear: return 1;
-    case Opcode::kSetMaterial: return 9;
-    case Opcode::kSetLight: return 11;
-    case Opcode::kUploadVertices:
-    case Opcode::kUploadIndices: return kVariable;
-    case Opcode::kDraw: return 2;
-    case Opcode::kEndFrame: return 0;
-  }
-  return 0;
-}
-
-bool known(std::uint32_t op) { return op >= 1 && op <= 16; }
-
 Mat4 matrix(std::span<const std::uint32_t> p) {
   Mat4 m;
   for (int c = 0; c < 4; ++c)
@@ -70,11 +44,11 @@ Error Device::execute(std::span<const std::uint32_t> words) {
   while (consumed_ < words.size()) {
     const std::uint32_t header = words[consumed_];
     const std::uint32_t op = header & 0xffffu, len = header >> 16;
-    if (!known(op)) return fail(Error::kBadOpcode);
+    if (!known_opcode(op)) return fail(Error::kBadOpcode);
     if (len > words.size() - consumed_ - 1) return fail(Error::kBadLength);
     const auto opcode = static_cast<Opcode>(op);
     const std::uint32_t expected = payload_words(opcode);
-    if (expected != kVariable && len != expected) return fail(Error::kBadLength);
+    if (expected != kVariablePayload && len != expected) return fail(Error::kBadLength);
     const Error e = execute_one(opcode, words.subspan(consumed_ + 1, len));
     if (e != Error::kOk) return e;
     consumed_ += 1 + std::size_t{len};

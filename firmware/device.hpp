@@ -120,8 +120,35 @@ enum class Opcode : std::uint16_t {
   kEndFrame = 15,          //                                                            0
   kSetBudget = 16,         // error budget in output levels, 1 .. kMaxBudgetLevels      1
 };
-inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_words) {
-  return static_cast<std::uint32_t>(op) | (payload_words << 16);
+
+// The opcodes above, and each command's payload length in words (kVariablePayload for the
+// uploads, whose count word gives theirs): execute's framing rules, which a host reading a stream
+// ahead of the device (host/command_stream.cpp) follows too.
+inline constexpr std::uint32_t kVariablePayload = 0xffff;
+constexpr bool known_opcode(std::uint32_t op) { return op >= 1 && op <= 16; }
+constexpr std::uint32_t payload_words(Opcode op) {
+  switch (op) {
+    case Opcode::kSetViewport: return 4;
+    case Opcode::kSetBufferCapacity: return 2;
+    case Opcode::kSetModelView:
+    case Opcode::kSetProjection: return 16;
+    case Opcode::kSetEye:
+    case Opcode::kSetMethod:
+    case Opcode::kSetCulling:
+    case Opcode::kSetDepthTest:
+    case Opcode::kSetBudget:
+    case Opcode::kClear: return 1;
+    case Opcode::kSetMaterial: return 9;
+    case Opcode::kSetLight: return 11;
+    case Opcode::kUploadVertices:
+    case Opcode::kUploadIndices: return kVariablePayload;
+    case Opcode::kDraw: return 2;
+    case Opcode::kEndFrame: return 0;
+  }
+  return 0;
+}
+inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_length) {
+  return static_cast<std::uint32_t>(op) | (payload_length << 16);
 }
 
 class PixelWriter;    // draw.cpp: a draw's depth test and framebuffer writes

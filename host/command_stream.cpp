@@ -1,10 +1,14 @@
 #include "host/command_stream.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 
 #include "host/text_file.hpp"
@@ -221,26 +225,32 @@ StreamMemory memory_for_stream(std::span<const std::uint32_t> words, std::size_t
   fw::Method method = fw::Method::kGouraud;
   StreamMemory need{fw::Device::memory_required(vp, cap, method)};
   for (std::size_t at = 0; at < words.size();) {
+    // Where the device stops, the scan stops: a command it cannot frame (Device::execute's
+    // rules), or layout values it refuses. Other refused values are the device's alone to find,
+    // so a stream that fails at one may get a larger block than it uses, never a smaller one.
     const std::uint32_t op = words[at] & 0xffffu, len = words[at] >> 16;
-    if (len > words.size() - at - 1) break;
+    if (!fw::known_opcode(op) || len > words.size() - at - 1) break;
+    const auto opcode = static_cast<fw::Opcode>(op);
+    const std::uint32_t expected = fw::payload_words(opcode);
+    if (expected != fw::kVariablePayload && len != expected) break;
+    const std::size_t header = at;
     const auto p = words.subspan(at + 1, len);
-    bool changed = false;
-    if (op == static_cast<std::uint32_t>(fw::Opcode::kSetViewport) && len == 4)
-      changed = accepted_viewport(p, vp);
-    else if (op == static_cast<std::uint32_t>(fw::Opcode::kSetBufferCapacity) && len == 2)
-      changed = accepted_capacity(p, cap);
-    else if (op == static_cast<std::uint32_t>(fw::Opcode::kSetMethod) && len == 1)
-      changed = accepted_method(p, method);
-    if (changed) {
-      const std::size_t bytes = fw::Device::memory_required(vp, cap, method);
-      if (bytes > limit) {
-        need.over_at = at;
-        need.over_bytes = bytes;
-        break;
-      }
-      need.bytes = std::max(need.bytes, bytes);
-    }
     at += 1 + std::size_t{len};
+    bool accepted = false;
+    switch (opcode) {
+      case fw::Opcode::kSetViewport: accepted = accepted_viewport(p, vp); break;
+      case fw::Opcode::kSetBufferCapacity: accepted = accepted_capacity(p, cap); break;
+      case fw::Opcode::kSetMethod: accepted = accepted_method(p, method); break;
+      default: continue;  // not a layout command
+    }
+    if (!accepted) break;
+    const std::size_t bytes = fw::Device::memory_required(vp, cap, method);
+    if (bytes > limit) {
+      need.over_at = header;
+      need.over_bytes = bytes;
+      break;
+    }
+    need.bytes = std::max(need.bytes, bytes);
   }
   return need;
 }
@@ -279,39 +289,43 @@ std::vector<std::uint32_t> read_command_file(const std::string& path) {
 }
 
 namespace {
-void write_words(const std::string& file, const std::string& path,
-                 std::span<const std::uint32_t> words) {
-  std::ofstream f(file, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(words.data()),
-          static_cast<std::streamsize>(words.size_bytes()));
-  f.close();
-  if (!f) throw std::runtime_error(path + ": cannot write");
+// All the words to an open descriptor; false if any write fails.
+bool write_all(int fd, std::span<const std::uint32_t> words) {
+  const auto* bytes = reinterpret_cast<const char*>(words.data());
+  for (std::size_t done = 0, size = words.size_bytes(); done < size;) {
+    const ssize_t n = ::write(fd, bytes + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
 }
 }  // namespace
 
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words) {
   // A new or regular file is written beside it and renamed over it, so that a write that fails
-  // part-way (a full disk) leaves the file that was there, not a stream cut short; anything else
+  // part-way (a full disk) leaves the file that was there, not a stream cut short. Anything else
   // (a symbolic link, /dev/stdout, a pipe) is written through, as it is.
   std::error_code e;
   const auto kind = std::filesystem::symlink_status(path, e).type();
-  if (kind != std::filesystem::file_type::not_found &&
-      kind != std::filesystem::file_type::regular) {
-    write_words(path, path, words);
-    return;
+  const bool replace =
+      kind == std::filesystem::file_type::not_found || kind == std::filesystem::file_type::regular;
+  const std::string file = replace ? path + ".part" : path;  // the one opened and written
+  // O_EXCL | O_NOFOLLOW: PATH.part is this call's own file, never one that was there (a stale
+  // one, or a link that would send the words elsewhere), so removing it on failure is safe.
+  const int fd = replace ? ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666)
+                         : ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0) {
+    const bool stale = replace && errno == EEXIST;
+    throw std::runtime_error(
+        path + ": cannot write" +
+        (stale ? " (" + file + " exists: left by an interrupted record?)" : ""));
   }
-  const std::string part = path + ".part";
-  try {
-    write_words(part, path, words);
-  } catch (const std::runtime_error&) {
-    std::filesystem::remove(part, e);
-    throw;
-  }
-  std::filesystem::rename(part, path, e);
-  if (e) {
-    std::filesystem::remove(part, e);
-    throw std::runtime_error(path + ": cannot write");
-  }
+  const bool written = write_all(fd, words);
+  const bool closed = ::close(fd) == 0;
+  if (written && closed && (!replace || std::rename(file.c_str(), path.c_str()) == 0)) return;
+  if (replace) std::filesystem::remove(file, e);
+  throw std::runtime_error(path + ": cannot write");
 }
 
 std::uint64_t framebuffer_hash(const fw::FramebufferView& fb) {

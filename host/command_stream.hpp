@@ -72,7 +72,9 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words);
 // device's own check. `bytes` is the largest need of the fresh device's state and of every state
 // before the first that needs more than `limit`; given that block the device refuses that
 // state's command with kOutOfMemory at its word (`over_at`), unless an earlier command fails
-// first. A header whose payload runs past the stream ends the scan; the device reports it.
+// first. The scan ends where the device would stop at the latest: a command it cannot frame
+// (Device::execute's rules: fw::known_opcode, fw::payload_words), or a layout command whose
+// values it refuses.
 struct StreamMemory {
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::size_t bytes = 0;
@@ -108,8 +110,9 @@ class StreamReplay {
 // not a whole number of 32-bit words. A paper scene's frame is at most a few hundred KiB.
 inline constexpr std::size_t kMaxCommandFileBytes = std::size_t{64} << 20;
 std::vector<std::uint32_t> read_command_file(const std::string& path);
-// Throws std::runtime_error naming the file if it cannot be written; a regular file is replaced
-// whole or not at all (written to PATH.part, then renamed).
+// Throws std::runtime_error naming the file if it cannot be written. A regular file is replaced
+// whole or not at all: written to PATH.part, created anew (an existing PATH.part, a symbolic
+// link included, is refused and left alone), then renamed over PATH.
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words);
 
 // FNV-1a 64 of the framebuffer's colour bytes, row by row (no stride padding): the hash the

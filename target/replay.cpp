@@ -195,22 +195,23 @@ bool run(const Arguments& args) {
     return false;
   }
   // As the host's replay (read_command_file): a file that ends inside a word runs nothing.
-  const int length = file_length(file);
-  if (length < 0 || length % 4 != 0) {
+  std::uint32_t length = 0;
+  const bool known = file_length(file, length);
+  if (!known || length % 4 != 0) {
     close_file(file);
     write("stream ");
     write(args.stream);
-    if (length < 0) {
+    if (!known) {
       write(": cannot read its length\n");
     } else {
       write(": ");
-      write_dec(static_cast<std::uint64_t>(length));
+      write_dec(length);
       write(" bytes is not a whole number of 32-bit words (a truncated file?)\n");
     }
     return false;
   }
   auto* device = new (device_storage) Device(std::span<std::byte>(block, sizeof block));
-  const Fed fed = feed(*device, file, static_cast<std::size_t>(length), args);
+  const Fed fed = feed(*device, file, length, args);
   close_file(file);
   bool ok = false;
   if (!fed.read_all) {
@@ -219,7 +220,7 @@ bool run(const Arguments& args) {
     write(": read error after ");
     write_dec(fed.bytes_read);
     write(" of ");
-    write_dec(static_cast<std::uint64_t>(length));
+    write_dec(length);
     write(" bytes\n");
   } else {
     ok = report_stream(args.stream, *device, fed.error, fed.word);

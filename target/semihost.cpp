@@ -71,9 +71,10 @@ int open_file(const char* path, bool for_writing) {
                     std::strlen(path));
 }
 
-int file_length(int handle) {
+bool file_length(int handle, std::uint32_t& bytes) {
   const std::uintptr_t block[1] = {static_cast<std::uintptr_t>(handle)};
-  return call(kSysFlen, block);
+  bytes = static_cast<std::uint32_t>(call(kSysFlen, block));
+  return bytes != 0xffffffffu;
 }
 
 std::size_t read_file(int handle, void* buffer, std::size_t size) {

@@ -19,8 +19,9 @@ void write_hex64(std::uint64_t value);  // 16 lower-case hex digits, as hash_hex
 bool command_line(char* buffer, std::size_t size);
 // SYS_OPEN in binary mode, for reading or for writing (created or truncated): a handle, or -1.
 int open_file(const char* path, bool for_writing);
-// SYS_FLEN: the file's length in bytes, or -1 on an error.
-int file_length(int handle);
+// SYS_FLEN: the file's length in bytes; false on an error (the call returns -1, which a 32-bit
+// length of 4 GiB - 1 bytes would too).
+bool file_length(int handle, std::uint32_t& bytes);
 // SYS_READ: the bytes read into buffer, at most `size`; 0 at the end of the file, and on an error
 // (which only the file's length then tells apart).
 std::size_t read_file(int handle, void* buffer, std::size_t size);

@@ -4,8 +4,8 @@
 # error for the stream errors) and a non-zero exit, as does a command asking for more than
 # replay's memory limit (unless an earlier command fails first) and a file over the limit of a
 # command file; a good stream replays and hashes. And `tinyphong record`'s outputs: two scenes
-# of one name are refused, a failed write keeps the old stream, a symbolic link is written
-# through.
+# of one name are refused, a failed write keeps the old stream, an existing PATH.part is refused
+# and left alone, a symbolic link is written through.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -91,6 +91,20 @@ if [ "$status" = 0 ] || ! grep -q "kept.tpcmd: cannot write" <<<"$out" ||
   echo "FAIL: a failed write: status $status, '$out', the old stream changed"; fail=1
 else
   echo "ok: a failed write keeps the old stream: $out"
+fi
+# A PATH.part that is there already (a stale one, or a link that would send the words elsewhere)
+# is refused and left as it was.
+rmdir "$work/kept.tpcmd.part"
+echo victim > "$work/victim"
+ln -s "$work/victim" "$work/kept.tpcmd.part"
+status=0
+out=$("$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
+if [ "$status" = 0 ] || ! grep -q "kept.tpcmd.part exists" <<<"$out" ||
+   [ "$(cat "$work/victim")" != victim ] || [ ! -L "$work/kept.tpcmd.part" ] ||
+   ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd"; then
+  echo "FAIL: a link at PATH.part: status $status, '$out', or a file changed"; fail=1
+else
+  echo "ok: a link at PATH.part is refused, nothing changed: $out"
 fi
 ln -s "$work/target.tpcmd" "$work/link.tpcmd"
 "$tp" record "$scenes/triangle.json" --method gouraud --size 160x120 -o "$work/link.tpcmd" >/dev/null

@@ -293,13 +293,21 @@ TEST(ReplayMemory, OverTheLimitFailsAtItsCommand) {
   }
 }
 
-// A command that fails before the state over the limit is the one reported.
+// A command that fails before the state over the limit is the one reported; where the device
+// stops framing or refuses a layout, the scan stops too, so nothing after it is sized for.
 TEST(ReplayMemory, AnEarlierFaultIsReportedFirst) {
-  const auto words = joined({{99u}, capacity(1u << 24, 1u << 26)});
-  EXPECT_EQ(memory_for_stream(words, StreamReplay::kMaxMemory).over_at, 1u);
-  const StreamError e = failure_of(words);
-  EXPECT_EQ(e.word_offset, 0u);
-  EXPECT_EQ(e.error, fw::Error::kBadOpcode);
+  const std::size_t fresh = memory_for_stream({}).bytes;
+  for (const auto& fault :
+       {std::vector<std::uint32_t>{99u},                                               // opcode
+        std::vector<std::uint32_t>{fw::command_header(fw::Opcode::kSetEye, 2), 0, 0},  // length
+        viewport(4097, 1)}) {                                                          // value
+    const auto words = joined({fault, capacity(1u << 24, 1u << 26)});
+    EXPECT_EQ(memory_for_stream(words, StreamReplay::kMaxMemory).over_at, StreamMemory::kNone);
+    EXPECT_EQ(memory_for_stream(joined({fault, capacity(1000, 0)})).bytes, fresh);
+    const StreamError e = failure_of(words);
+    EXPECT_EQ(e.word_offset, 0u);
+    EXPECT_NE(e.error, fw::Error::kOutOfMemory);
+  }
 }
 
 class TempFile {

@@ -89,11 +89,13 @@ expect "a partial word: refused before any command runs, failure" \
        "$(grep -c "^stream .* error\|^stream [^ ]* [0-9a-f]\{16\}$" <<<"$out")" = 0
 mkdir -p "$work/a-directory"
 size=$(stat -c %s "$work/a-directory")
-want="a-directory: read error after 0 of $size bytes"
-[ $((size % 4)) = 0 ] || want="a-directory: $size bytes is not a whole number of 32-bit words"
-run "$work/a-directory"
-expect "a read that fails: '$want', failure" \
-  test "$status" = 1 -a "$(grep -c "$want" <<<"$out")" = 1
+if [ "$size" -gt 0 ] && [ $((size % 4)) = 0 ]; then  # ext4 and tmpfs; not XFS (6) or btrfs (0)
+  run "$work/a-directory"
+  expect "a read that fails: read error after 0 of $size bytes, failure" \
+    test "$status" = 1 -a "$(grep -c "a-directory: read error after 0 of $size bytes" <<<"$out")" = 1
+else
+  echo "not run: a read that fails (a directory here is $size bytes, not a whole number of words)"
+fi
 run "$1" --chunk 0
 expect "--chunk 0: refused, failure" \
   test "$status" = 1 -a "$(grep -c "^--chunk: a count of words" <<<"$out")" = 1
