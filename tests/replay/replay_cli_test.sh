@@ -80,32 +80,39 @@ if [ "$status" != 2 ] || ! grep -q "a/x.json and .*b/x.json would both be record
 else
   echo "ok: two scenes of one name: $out"
 fi
-# record replaces a stream whole or not at all: a write that fails (here PATH.part cannot be
-# created) leaves the old file; a symbolic link is written through, not replaced.
+# record replaces a stream whole or not at all: a write that fails part-way (here the file size
+# limit, 0 blocks) leaves the old file and no PATH.part.
 cp "$work/good.tpcmd" "$work/kept.tpcmd"
-mkdir "$work/kept.tpcmd.part"
 status=0
-out=$("$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
-if [ "$status" = 0 ] || ! grep -q "kept.tpcmd: cannot write" <<<"$out" ||
-   ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd"; then
-  echo "FAIL: a failed write: status $status, '$out', the old stream changed"; fail=1
+out=$(trap '' XFSZ; ulimit -f 0
+      "$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
+if [ "$status" = 0 ] || ! grep -q "kept.tpcmd: cannot write$" <<<"$out" ||
+   ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd" || [ -e "$work/kept.tpcmd.part" ]; then
+  echo "FAIL: a failed write: status $status, '$out', the old stream changed or PATH.part left"
+  fail=1
 else
-  echo "ok: a failed write keeps the old stream: $out"
+  echo "ok: a failed write keeps the old stream and leaves no PATH.part: $out"
 fi
-# A PATH.part that is there already (a stale one, or a link that would send the words elsewhere)
-# is refused and left as it was.
-rmdir "$work/kept.tpcmd.part"
-echo victim > "$work/victim"
-ln -s "$work/victim" "$work/kept.tpcmd.part"
-status=0
-out=$("$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
-if [ "$status" = 0 ] || ! grep -q "kept.tpcmd.part exists" <<<"$out" ||
-   [ "$(cat "$work/victim")" != victim ] || [ ! -L "$work/kept.tpcmd.part" ] ||
-   ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd"; then
-  echo "FAIL: a link at PATH.part: status $status, '$out', or a file changed"; fail=1
-else
-  echo "ok: a link at PATH.part is refused, nothing changed: $out"
-fi
+# A PATH.part that is there already (left by an interrupted record, or a link that would send the
+# words elsewhere) is refused and left as it was.
+victim=$work/victim
+echo victim > "$victim"
+for stale in directory link; do
+  rm -rf "$work/kept.tpcmd.part"
+  if [ $stale = directory ]; then mkdir "$work/kept.tpcmd.part"; else ln -s "$victim" "$work/kept.tpcmd.part"; fi
+  status=0
+  out=$("$tp" record "$scenes/triangle.json" --method kb -o "$work/kept.tpcmd" 2>&1 >/dev/null) || status=$?
+  left=0
+  if [ $stale = directory ]; then [ -d "$work/kept.tpcmd.part" ] || left=1
+  else [ -L "$work/kept.tpcmd.part" ] && [ "$(cat "$victim")" = victim ] || left=1; fi
+  if [ "$status" = 0 ] || ! grep -q "kept.tpcmd.part exists" <<<"$out" || [ $left = 1 ] ||
+     ! cmp -s "$work/good.tpcmd" "$work/kept.tpcmd"; then
+    echo "FAIL: a $stale at PATH.part: status $status, '$out', or a file changed"; fail=1
+  else
+    echo "ok: a $stale at PATH.part is refused, nothing changed: $out"
+  fi
+done
+rm -rf "$work/kept.tpcmd.part"
 ln -s "$work/target.tpcmd" "$work/link.tpcmd"
 "$tp" record "$scenes/triangle.json" --method gouraud --size 160x120 -o "$work/link.tpcmd" >/dev/null
 if [ ! -L "$work/link.tpcmd" ] || ! cmp -s "$work/good.tpcmd" "$work/target.tpcmd"; then
