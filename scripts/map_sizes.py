@@ -5,10 +5,10 @@ vector table, summed from the input sections of its GNU ld link map; the streams
 Prints one line per (section, origin): section, origin, bytes; then what a part's flash holds in
 all (the stream table left out). Used by scripts/target-size.sh
 (docs/TARGET.md, "Footprint"), scripts/target-method-size.py (which imports sizes()),
-scripts/target-code-heat.py and scripts/target-setup-split.py (input_sections() and
-origin_of()), tests/target/check_budget.sh, check_code_heat.sh and check_setup_split.sh.
+scripts/target-code-heat.py and scripts/target-setup-split.py (input_sections(), origin_of()
+and demangled()), tests/target/check_budget.sh, check_code_heat.sh and check_setup_split.sh.
 Usage: python3 scripts/map_sizes.py IMAGE.map"""
-import re, sys
+import re, subprocess, sys
 
 
 def input_sections(map_path):
@@ -58,6 +58,13 @@ def origin_of(obj):
     if "libc" in obj or "libg" in obj or "libstdc++" in obj:
         return "newlib"
     return "other"
+
+
+def demangled(sections):
+    """The C++ names of .text.MANGLED input sections (c++filt, the names on its input)."""
+    names = [name[len(".text."):] if name.startswith(".text.") else name for name in sections]
+    return subprocess.run(["c++filt"], input="\n".join(names), capture_output=True, text=True,
+                          check=True).stdout.splitlines()
 
 
 def sizes(map_path):

@@ -31,7 +31,7 @@ import argparse, bisect, concurrent.futures, functools, math, os, subprocess, sy
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from map_sizes import input_sections, origin_of  # noqa: E402
+from map_sizes import demangled, input_sections, origin_of  # noqa: E402
 
 IMAGE = "m3-Os-replay"
 SCENES = "teapot-l4,sphere-40-l2,dodecahedron-30-l8,triangle"
@@ -51,13 +51,6 @@ def code_sections(map_path, origin=None):
 def firmware_functions(map_path):
     """[(address, bytes, section name)] of the firmware's code, one function each, by address."""
     return code_sections(map_path, "firmware")
-
-
-def demangled(sections):
-    """The C++ names of .text.MANGLED input sections."""
-    names = [name[len(".text."):] if name.startswith(".text.") else name for name in sections]
-    return subprocess.run(["c++filt"], input="\n".join(names), capture_output=True, text=True,
-                          check=True).stdout.splitlines()
 
 
 def trace(qemu, image, code, stream, host_hash, workdir):

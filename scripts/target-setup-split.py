@@ -28,7 +28,7 @@ import argparse, bisect, os, re, subprocess, sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from map_sizes import input_sections, origin_of  # noqa: E402
+from map_sizes import demangled, input_sections, origin_of  # noqa: E402
 
 IMAGE = "m3-Os-replay"
 TARGET = 48 * 1024  # issue 12's firmware code at -Os
@@ -110,13 +110,6 @@ def data_roots(image, functions):
     return roots
 
 
-def demangled(functions, starts):
-    names = [functions.by_start[s][1] for s in starts]
-    names = [n[len(".text."):] if n.startswith(".text.") else n for n in names]
-    out = run("c++filt", *names) if names else ""
-    return dict(zip(starts, out.split("\n")))
-
-
 def reached(roots, edges):
     seen, stack = set(roots), list(roots)
     while stack:
@@ -137,7 +130,8 @@ def main():
     functions = Functions(image[:-len(".elf")] + ".map")
     edges = call_edges(image, functions)
     roots = data_roots(image, functions)
-    names = demangled(functions, functions.starts)
+    names = dict(zip(functions.starts,
+                     demangled([functions.by_start[s][1] for s in functions.starts])))
     setup_roots = {r for r in roots if "::setup(" in names[r]}
     device_roots = roots - setup_roots  # the vector table's reset handler among them
     if not setup_roots or not any(names[s] == "reset_handler" for s in device_roots):
