@@ -28,15 +28,6 @@ bool flag(std::uint32_t w, bool& out) {
   return w <= 1;
 }
 
-// set_viewport's flags word: bit 0 write counts, bit 1 no depth buffer; any other bit is a
-// malformed command (docs/CONVENTIONS.md).
-constexpr std::uint32_t kViewportWriteCount = 1u, kViewportNoDepth = 2u;
-bool viewport_flags(std::uint32_t w, ViewportCmd& c) {
-  c.write_count = (w & kViewportWriteCount) != 0;
-  c.depth_buffer = (w & kViewportNoDepth) == 0;
-  return (w & ~(kViewportWriteCount | kViewportNoDepth)) == 0;
-}
-
 }  // namespace
 
 Error Device::execute(std::span<const std::uint32_t> words) {

@@ -155,8 +155,7 @@ std::size_t Device::memory_required(const ViewportCmd& vp, const BufferCapacityC
 }
 
 bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceState& s) const {
-  // Capacities are bounded so that the sizes below cannot wrap a 32-bit size_t either.
-  if (cap.max_vertices > (1u << 24) || cap.max_indices > (1u << 26)) return false;
+  if (!capacity_ok(cap)) return false;  // so that the sizes below cannot wrap
   if (memory_required(vp, cap, s.method) > mem_.size()) return false;
   const std::size_t pixels = std::size_t{vp.width} * vp.height;
   std::size_t o = 0;
@@ -185,10 +184,8 @@ bool Device::layout(const ViewportCmd& vp, const BufferCapacityCmd& cap, DeviceS
 }
 
 Error Device::set_viewport(const ViewportCmd& cmd) {
-  if (cmd.width == 0 || cmd.height == 0 || cmd.width > kMaxDimension || cmd.height > kMaxDimension)
-    return fail(Error::kViewportTooLarge);
-  if (cmd.format != PixelFormat::kRgb888 && cmd.format != PixelFormat::kRgb565)
-    return fail(Error::kBadArgument);
+  if (!viewport_size_ok(cmd)) return fail(Error::kViewportTooLarge);
+  if (!pixel_format_ok(cmd.format)) return fail(Error::kBadArgument);
   DeviceState s = state_;
   if (!layout(cmd, state_.capacity, s)) return fail(Error::kOutOfMemory);
   release_method();

@@ -151,6 +151,35 @@ inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_l
   return static_cast<std::uint32_t>(op) | (payload_length << 16);
 }
 
+// The layout commands' values as the device accepts them (set_viewport, set_buffer_capacity and
+// execute's decoding of them), rules that a host sizing a memory block for a stream ahead of the
+// device (host/command_stream.cpp) applies too. Always inlined: a few comparisons each, which a
+// size build would otherwise call. set_viewport's flags word: bit 0 write counts, bit 1 no depth
+// buffer; any other bit is a malformed command (docs/CONVENTIONS.md).
+inline constexpr std::uint32_t kViewportWriteCount = 1u, kViewportNoDepth = 2u;
+inline constexpr std::uint32_t kViewportFlags = kViewportWriteCount | kViewportNoDepth;
+[[gnu::always_inline]] constexpr bool viewport_flags(std::uint32_t w, ViewportCmd& c) {
+  c.write_count = (w & kViewportWriteCount) != 0;
+  c.depth_buffer = (w & kViewportNoDepth) == 0;
+  return (w & ~kViewportFlags) == 0;
+}
+// Refused: kViewportTooLarge.
+[[gnu::always_inline]] constexpr bool viewport_size_ok(const ViewportCmd& c) {
+  if (c.width == 0 || c.height == 0 || c.width > kMaxDimension || c.height > kMaxDimension)
+    return false;
+  return true;
+}
+// Refused: kBadArgument, as a flags word with another bit is.
+[[gnu::always_inline]] constexpr bool pixel_format_ok(PixelFormat f) {
+  if (f != PixelFormat::kRgb888 && f != PixelFormat::kRgb565) return false;
+  return true;
+}
+// Refused: kOutOfMemory (the layout's sizes would wrap).
+[[gnu::always_inline]] constexpr bool capacity_ok(const BufferCapacityCmd& c) {
+  if (c.max_vertices > kMaxVertexCapacity || c.max_indices > kMaxIndexCapacity) return false;
+  return true;
+}
+
 class PixelWriter;    // draw.cpp: a draw's depth test and framebuffer writes
 struct MethodTraits;  // registry.hpp
 

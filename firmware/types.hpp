@@ -68,6 +68,9 @@ enum class EyeMode : std::uint32_t { kFinite = 0, kInfinite = 1 };
 
 // Device limits. The bound arguments are in raster.hpp (coordinates) and device.cpp (inputs).
 inline constexpr std::uint32_t kMaxDimension = 4096;  // largest width and height
+// Largest buffer capacities (set_buffer_capacity): bounded so that the layout's sizes cannot wrap
+// a 32-bit size_t.
+inline constexpr std::uint32_t kMaxVertexCapacity = 1u << 24, kMaxIndexCapacity = 1u << 26;
 // The command stream has 16 light slots (set_light's index, 0 .. 15). A build shades up to
 // TP_MAX_LIGHTS of them (1 .. 16, default 16): a port for a part with little RAM sets fewer, and
 // every per-light array of the methods' state shrinks with it (kb's from 83,680 bytes to 12,112

@@ -90,8 +90,8 @@ void CommandWriter::matrix(fw::Opcode op, const fw::Mat4& m) {
 
 void CommandWriter::set_viewport(const fw::ViewportCmd& c) {
   header(fw::Opcode::kSetViewport, 4);
-  // The flags word: bit 0 write counts, bit 1 no depth buffer (docs/CONVENTIONS.md).
-  const std::uint32_t flags = (c.write_count ? 1u : 0u) | (c.depth_buffer ? 0u : 2u);
+  const std::uint32_t flags =
+      (c.write_count ? fw::kViewportWriteCount : 0u) | (c.depth_buffer ? 0u : fw::kViewportNoDepth);
   words_.insert(words_.end(), {c.width, c.height, static_cast<std::uint32_t>(c.format), flags});
 }
 
@@ -190,22 +190,23 @@ void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
 
 namespace {
 
-// The layout-changing commands' values as the device accepts them (Device::set_viewport,
-// set_buffer_capacity and set_method, execute_one's decoding), but for the memory check itself.
+// The layout-changing commands' values as the device accepts them, by its own rules
+// (firmware/device.hpp), but for the memory check itself.
 bool accepted_viewport(std::span<const std::uint32_t> p, fw::ViewportCmd& vp) {
-  if (p[0] == 0 || p[1] == 0 || p[0] > fw::kMaxDimension || p[1] > fw::kMaxDimension ||
-      (p[2] != static_cast<std::uint32_t>(fw::PixelFormat::kRgb888) &&
-       p[2] != static_cast<std::uint32_t>(fw::PixelFormat::kRgb565)) ||
-      p[3] > 3u)  // flags: bit 0 write counts, bit 1 no depth buffer, no other
+  fw::ViewportCmd c;
+  c.width = p[0];
+  c.height = p[1];
+  c.format = static_cast<fw::PixelFormat>(p[2]);
+  if (!fw::viewport_flags(p[3], c) || !fw::viewport_size_ok(c) || !fw::pixel_format_ok(c.format))
     return false;
-  vp = fw::ViewportCmd{p[0], p[1], static_cast<fw::PixelFormat>(p[2]), (p[3] & 1u) != 0,
-                       (p[3] & 2u) == 0};
+  vp = c;
   return true;
 }
 
 bool accepted_capacity(std::span<const std::uint32_t> p, fw::BufferCapacityCmd& cap) {
-  if (p[0] > (1u << 24) || p[1] > (1u << 26)) return false;
-  cap = fw::BufferCapacityCmd{p[0], p[1]};
+  const fw::BufferCapacityCmd c{p[0], p[1]};
+  if (!fw::capacity_ok(c)) return false;
+  cap = c;
   return true;
 }
 

@@ -546,9 +546,9 @@ int main(int argc, char** argv) {
   auto* memory = app.add_subcommand(
       "memory", "the device's memory block per resolution, pixel format and method (bytes)");
   memory->add_option("--vertices", mem_vertices, "vertex buffer capacity")
-      ->check(CLI::Range(0u, 1u << 24));
+      ->check(CLI::Range(0u, tp::fw::kMaxVertexCapacity));
   memory->add_option("--indices", mem_indices, "index buffer capacity")
-      ->check(CLI::Range(0u, 1u << 26));
+      ->check(CLI::Range(0u, tp::fw::kMaxIndexCapacity));
 
   StressCli stress_cli;
   add_stress(app, stress_cli);
