@@ -154,8 +154,10 @@ inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_l
 // The layout commands' values as the device accepts them (set_viewport, set_buffer_capacity and
 // execute's decoding of them), rules that a host sizing a memory block for a stream ahead of the
 // device (host/command_stream.cpp) applies too. Always inlined: a few comparisons each, which a
-// size build would otherwise call. set_viewport's flags word: bit 0 write counts, bit 1 no depth
-// buffer; any other bit is a malformed command (docs/CONVENTIONS.md).
+// size build would otherwise call. The tests are written as `if (...) return false;`, the form the
+// device had inline: as one `return` expression GCC lays out the x86 -O2 code differently
+// (docs/DECISIONS.md, "The layout commands' rules stated once"). set_viewport's flags word: bit 0
+// write counts, bit 1 no depth buffer; any other bit is a malformed command (docs/CONVENTIONS.md).
 inline constexpr std::uint32_t kViewportWriteCount = 1u, kViewportNoDepth = 2u;
 inline constexpr std::uint32_t kViewportFlags = kViewportWriteCount | kViewportNoDepth;
 [[gnu::always_inline]] constexpr bool viewport_flags(std::uint32_t w, ViewportCmd& c) {

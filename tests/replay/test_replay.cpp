@@ -253,7 +253,12 @@ TEST(ReplayMemory, RefusedValuesSizeNothing) {
   EXPECT_EQ(fresh, required(0, 0));
   EXPECT_EQ(memory_for_stream(viewport(4097, 4096)).bytes, fresh);
   EXPECT_EQ(memory_for_stream(viewport(4096, 4096, 4)).bytes, fresh);  // an unknown flag
+  EXPECT_EQ(memory_for_stream(viewport(0, 4096)).bytes, fresh);
+  const std::vector<std::uint32_t> format_2 = {fw::command_header(fw::Opcode::kSetViewport, 4),
+                                               4096u, 4096u, 2u, 0u};
+  EXPECT_EQ(memory_for_stream(format_2).bytes, fresh);
   EXPECT_EQ(memory_for_stream(capacity(1u << 25, 0)).bytes, fresh);
+  EXPECT_EQ(memory_for_stream(capacity(0, (1u << 26) + 1)).bytes, fresh);
   EXPECT_EQ(memory_for_stream(method(static_cast<fw::Method>(1000))).bytes, fresh);
 }
 
