@@ -535,8 +535,9 @@ class PointShader {
     constexpr std::int64_t half = std::int64_t{1} << 29;
     if (few_grey_) {
       const std::int64_t spec = ks * s.grey_power + half;
-      for (int c = 0; c < 3; ++c)
+      TP_UNROLL_XYZ for (int c = 0; c < 3; ++c) {
         out[c] = ambient_[c] + s.coloured[c] + ((diffuse_[c] * s.grey_ndl + spec) >> 30);
+      }
       return;
     }
     constexpr std::int64_t kFraction = (std::int64_t{1} << 30) - 1;
