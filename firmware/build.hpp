@@ -25,11 +25,13 @@ inline constexpr bool kSizeBuild = false;
 // A helper of a pixel loop, inlined into it in speed builds.
 #define TP_PIXEL_INLINE [[gnu::always_inline]]
 #define TP_SIZE_OUTLINE
-// A pixel loop's loop over x, y and z, unrolled on the desktop: GCC -O2 kept PointShader's
-// stepping of its six sums a loop over memory on x86, 24 instructions a pixel where six additions
-// do. On the Cortex-M the unrolled form was slower (Phong up to 0.9 % more guest instructions per
-// pixel) and 268 bytes larger, so the Arm images keep the loop (docs/DECISIONS.md, "The root
-// seed's segments and the stepper unrolled").
+// A pixel loop's loop over x, y and z (or the three channels), unrolled on the desktop: GCC -O2
+// kept PointShader's stepping of its six sums a loop over memory on x86, 24 instructions a pixel
+// where six additions do, and its sum of the three channels (totals) a loop of 11 instructions a
+// channel. On the Cortex-M the unrolled stepper was slower (Phong up to 0.9 % more guest
+// instructions per pixel) and 268 bytes larger, so the Arm images keep the loops
+// (docs/DECISIONS.md, "The root seed's segments and the stepper unrolled", "The exact shader's
+// channel sums unrolled").
 #if defined(__arm__)
 #define TP_UNROLL_XYZ
 #else

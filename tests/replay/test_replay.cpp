@@ -253,7 +253,9 @@ TEST(ReplayMemory, RefusedValuesSizeNothing) {
   EXPECT_EQ(fresh, required(0, 0));
   EXPECT_EQ(memory_for_stream(viewport(4097, 4096)).bytes, fresh);
   EXPECT_EQ(memory_for_stream(viewport(4096, 4096, 4)).bytes, fresh);  // an unknown flag
-  EXPECT_EQ(memory_for_stream(viewport(0, 4096)).bytes, fresh);
+  // A width of 0 would need no more than a fresh device: the 1×1 viewport after it shows whether
+  // the scan stopped there.
+  EXPECT_EQ(memory_for_stream(joined({viewport(0, 4096), viewport(1, 1)})).bytes, fresh);
   const std::vector<std::uint32_t> format_2 = {fw::command_header(fw::Opcode::kSetViewport, 4),
                                                4096u, 4096u, 2u, 0u};
   EXPECT_EQ(memory_for_stream(format_2).bytes, fresh);
