@@ -51,10 +51,7 @@ Error Device::execute_one(Opcode op, std::span<const std::uint32_t> p) {
   switch (op) {
     case Opcode::kSetViewport: {
       ViewportCmd c;
-      c.width = p[0];
-      c.height = p[1];
-      c.format = static_cast<PixelFormat>(p[2]);
-      if (!viewport_flags(p[3], c)) return fail(Error::kBadArgument);
+      if (!decode_viewport(p, c)) return fail(Error::kBadArgument);
       return set_viewport(c);
     }
     case Opcode::kSetBufferCapacity: return set_buffer_capacity(BufferCapacityCmd{p[0], p[1]});

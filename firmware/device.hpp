@@ -160,10 +160,16 @@ inline constexpr std::uint32_t command_header(Opcode op, std::uint32_t payload_l
 // write counts, bit 1 no depth buffer; any other bit is a malformed command (docs/CONVENTIONS.md).
 inline constexpr std::uint32_t kViewportWriteCount = 1u, kViewportNoDepth = 2u;
 inline constexpr std::uint32_t kViewportFlags = kViewportWriteCount | kViewportNoDepth;
-[[gnu::always_inline]] constexpr bool viewport_flags(std::uint32_t w, ViewportCmd& c) {
-  c.write_count = (w & kViewportWriteCount) != 0;
-  c.depth_buffer = (w & kViewportNoDepth) == 0;
-  return (w & ~kViewportFlags) == 0;
+// set_viewport's payload (width, height, format, flags) as the command; false if the flags word
+// has another bit (kBadArgument).
+[[gnu::always_inline]] constexpr bool decode_viewport(std::span<const std::uint32_t> p,
+                                                      ViewportCmd& c) {
+  c.width = p[0];
+  c.height = p[1];
+  c.format = static_cast<PixelFormat>(p[2]);
+  c.write_count = (p[3] & kViewportWriteCount) != 0;
+  c.depth_buffer = (p[3] & kViewportNoDepth) == 0;
+  return (p[3] & ~kViewportFlags) == 0;
 }
 // Refused: kViewportTooLarge.
 [[gnu::always_inline]] constexpr bool viewport_size_ok(const ViewportCmd& c) {

@@ -194,10 +194,7 @@ namespace {
 // (firmware/device.hpp), but for the memory check itself.
 bool accepted_viewport(std::span<const std::uint32_t> p, fw::ViewportCmd& vp) {
   fw::ViewportCmd c;
-  c.width = p[0];
-  c.height = p[1];
-  c.format = static_cast<fw::PixelFormat>(p[2]);
-  if (!fw::viewport_flags(p[3], c) || !fw::viewport_size_ok(c) || !fw::pixel_format_ok(c.format))
+  if (!fw::decode_viewport(p, c) || !fw::viewport_size_ok(c) || !fw::pixel_format_ok(c.format))
     return false;
   vp = c;
   return true;
