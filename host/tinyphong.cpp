@@ -32,6 +32,7 @@
 #include "host/cli_options.hpp"
 #include "host/command_stream.hpp"
 #include "host/device_renderer.hpp"
+#include "host/file_identity.hpp"
 #include "host/image_io.hpp"
 #include "host/metrics.hpp"
 #include "host/reference.hpp"
@@ -128,6 +129,34 @@ Scene load(const SceneOptions& o) {
   return s;
 }
 
+// A file a command reads, and how its refusal names it.
+struct Input {
+  std::filesystem::path path;
+  std::string what;  // "the scene file scenes/teapot.json"
+};
+
+std::vector<Input> inputs_of(const Scene& scene) {
+  std::vector<Input> inputs{{scene.file, "the scene file " + scene.file}};
+  for (const MeshSpec& m : scene.meshes)
+    if (!m.obj.empty())
+      inputs.push_back({m.obj, "the mesh " + m.obj.string() + " of " + scene.file});
+  return inputs;
+}
+
+// An output that is one of the inputs, by any name (host/file_identity.hpp), is refused before
+// anything is written: true after the message, for exit status 2. Empty outputs are not asked for.
+bool writes_over_input(std::string_view command, const std::vector<std::string>& outputs,
+                       const std::vector<Input>& inputs) {
+  for (const std::string& out : outputs)
+    for (const Input& in : inputs)
+      if (!out.empty() && same_file(out, in.path)) {
+        std::cerr << "tinyphong " << command << ": " << out << " is " << in.what
+                  << ": nothing written\n";
+        return true;
+      }
+  return false;
+}
+
 // The device's buffers sized for the scene's meshes: DeviceRenderer's defaults hold 2^17
 // vertices, a scene may have up to kMaxSceneVertices (host/scene.hpp).
 struct Capacity {
@@ -160,6 +189,7 @@ void print_comparison(const Comparison& c) {
 
 int run_render(const SceneOptions& o, const std::string& out, bool compare_ref) {
   const Scene scene = load(o);
+  if (writes_over_input("render", {out}, inputs_of(scene))) return 2;
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);
@@ -180,6 +210,7 @@ int run_render(const SceneOptions& o, const std::string& out, bool compare_ref) 
 int run_reference(const SceneOptions& o, const std::string& out, const std::string& exr,
                   bool angular) {
   const Scene scene = load(o);
+  if (writes_over_input("reference", {out, exr}, inputs_of(scene))) return 2;
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);  // the same checks as a device render: one definition of "valid"
@@ -226,6 +257,9 @@ void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& m
 
 int run_compare(const std::string& a, const std::string& b, const std::string& diff,
                 std::optional<int> row, int worst) {
+  if (writes_over_input("compare", {diff},
+                        {{a, "the first image " + a}, {b, "the second image " + b}}))
+    return 2;
   const Image8 ia = read_png(a), ib = read_png(b);
   if (ia.width != ib.width || ia.height != ib.height) {
     std::cerr << "tinyphong compare: " << a << " is " << ia.width << "x" << ia.height << " but "
@@ -256,12 +290,11 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
 }
 
 // The command words the driver sends for one frame of the scene, as a .tpcmd file.
-void record_one(const SceneOptions& o, const std::string& out) {
-  const Scene scene = load(o);
+void record_one(const Scene& scene, double rotate_deg, const std::string& out) {
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);
-  const std::vector<std::uint32_t> words = device.record(radians(o.rotate_deg));
+  const std::vector<std::uint32_t> words = device.record(radians(rotate_deg));
   write_command_file(out, words);
   std::cout << "recorded " << scene.name << " (" << scene.width << "x" << scene.height << ", "
             << scene.method << "): " << words.size() << " words -> " << out << "\n";
@@ -274,11 +307,19 @@ struct RecordCli {
 };
 
 // One scene to -o FILE, or several (one process: the build records 240 streams) into --dir
-// as DIR/<scene file's stem>.tpcmd.
+// as DIR/<scene file's stem>.tpcmd. Every scene is read and every output checked before any
+// stream is written: a bad scene, two scenes of one output, or an output that is one of the
+// inputs, writes nothing.
 int run_record(const RecordCli& cli) {
   if (cli.out.empty() == cli.dir.empty() || (!cli.out.empty() && cli.scenes.size() != 1)) {
     std::cerr << "tinyphong record: give either -o FILE (one scene) or --dir DIR\n";
     return 2;
+  }
+  std::vector<Scene> scenes;
+  for (const std::string& file : cli.scenes) {
+    SceneOptions o = cli.options;
+    o.scene = file;
+    scenes.push_back(load(o));
   }
   std::vector<std::string> outs;
   for (const std::string& scene : cli.scenes) {
@@ -286,19 +327,21 @@ int run_record(const RecordCli& cli) {
                                       (std::filesystem::path(scene).stem().string() + ".tpcmd"))
                                          .string()
                                    : cli.out);
-    // Two scenes of one name in different folders would write one file: refused before any is.
-    const auto same = std::find(outs.begin(), outs.end() - 1, outs.back());
+    // Two scenes of one name in different folders would write one file.
+    const auto same = std::find_if(outs.begin(), outs.end() - 1, [&](const std::string& o) {
+      return o == outs.back() || same_file(o, outs.back());
+    });
     if (same != outs.end() - 1) {
       std::cerr << "tinyphong record: " << cli.scenes[static_cast<std::size_t>(same - outs.begin())]
                 << " and " << scene << " would both be recorded to " << outs.back() << "\n";
       return 2;
     }
   }
-  for (std::size_t i = 0; i < cli.scenes.size(); ++i) {
-    SceneOptions o = cli.options;
-    o.scene = cli.scenes[i];
-    record_one(o, outs[i]);
-  }
+  std::vector<Input> inputs;
+  for (const Scene& scene : scenes) std::ranges::copy(inputs_of(scene), std::back_inserter(inputs));
+  if (writes_over_input("record", outs, inputs)) return 2;
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    record_one(scenes[i], cli.options.rotate_deg, outs[i]);
   return 0;
 }
 
@@ -332,6 +375,8 @@ int run_replay(const std::vector<std::string>& in, const std::string& out, bool 
     std::cerr << "tinyphong replay: -o takes one stream, " << in.size() << " given\n";
     return 2;
   }
+  if (!in.empty() && writes_over_input("replay", {out}, {{in.front(), "the stream " + in.front()}}))
+    return 2;
   int status = 0;
   for (const std::string& file : in) {
     try {

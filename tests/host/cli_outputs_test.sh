@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# The CLI never writes an output over one of its inputs: `record`, `render` or `reference` over
+# the scene file or a mesh it names, `compare --diff` over either image it compares, `replay -o`
+# over its stream. The same file by any name is refused (the path itself, ./dir/../, a symbolic
+# link, a hard link), with exit status 2, a message naming the input and every file left as it
+# was; with several scenes a bad one makes `record` write no stream at all. Good outputs still
+# work.
+# Usage: cli_outputs_test.sh TINYPHONG SCENES_DIR
+set -euo pipefail
+tp=$1 scenes=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail=0
+
+cp "$scenes/triangle.json" "$work/scene.json"
+cp "$scenes/quad.obj" "$work/quad.obj"
+cat > "$work/mesh.json" <<'JSON'
+{
+  "camera": {"type": "orthographic", "extents": [-2, 2, -2, 2]},
+  "lights": [{"type": "directional", "direction": [0, 0, 1]}],
+  "meshes": [{"obj": "quad.obj"}]
+}
+JSON
+mkdir "$work/sub" "$work/dir"
+ln -s scene.json "$work/link.tpcmd"
+ln "$work/scene.json" "$work/hard.tpcmd"
+ln -s quad.obj "$work/obj-link.tpcmd"
+ln -s scene.json "$work/link.png"
+ln -s scene.json "$work/link.exr"
+cp -a "$work" "$work.before"
+trap 'rm -rf "$work" "$work.before"' EXIT
+
+# refused NAME TEXT ARGS...: exit status 2, TEXT on stderr, no file of the work folder changed
+# and none added.
+refused() {
+  local name=$1 text=$2 out status=0
+  shift 2
+  out=$("$tp" "$@" 2>&1 >/dev/null) || status=$?
+  if [ "$status" != 2 ] || ! grep -qF -- "$text" <<<"$out"; then
+    echo "FAIL: $name: status $status, '$out'"; fail=1
+  elif ! diff -r --no-dereference "$work.before" "$work" >/dev/null; then
+    echo "FAIL: $name: a file changed: $(diff -rq --no-dereference "$work.before" "$work")"; fail=1
+  else
+    echo "ok: $name: $out"
+  fi
+}
+
+cd "$work"
+refused "record over its scene" "scene.json is the scene file scene.json: nothing written" \
+  record scene.json -o scene.json
+refused "record over its scene, by another path" "is the scene file scene.json" \
+  record scene.json -o sub/../scene.json
+refused "record over its scene, by an absolute path" "is the scene file scene.json" \
+  record scene.json -o "$work/scene.json"
+refused "record over its scene, through a symbolic link" \
+  "link.tpcmd is the scene file scene.json" record scene.json -o link.tpcmd
+refused "record over its scene, through a hard link" \
+  "hard.tpcmd is the scene file scene.json" record scene.json -o hard.tpcmd
+refused "record over the scene's mesh" "quad.obj is the mesh quad.obj of mesh.json" \
+  record mesh.json -o quad.obj
+refused "record over the scene's mesh, through a link" "obj-link.tpcmd is the mesh quad.obj of mesh.json" \
+  record mesh.json -o obj-link.tpcmd
+refused "render over its scene, through a link" "link.png is the scene file scene.json" \
+  render scene.json -o link.png
+refused "reference over its scene, through a link" "link.png is the scene file scene.json" \
+  reference scene.json -o link.png
+refused "reference --exr over its scene, through a link" "link.exr is the scene file scene.json" \
+  reference scene.json -o ref.png --exr link.exr
+# --dir: DIR/scene.tpcmd is a link to the other scene's file.
+ln -s ../mesh.json dir/scene.tpcmd
+rm -rf "$work.before" && cp -a "$work" "$work.before"
+refused "record --dir over another scene" "dir/scene.tpcmd is the scene file mesh.json" \
+  record mesh.json scene.json --dir dir
+rm dir/scene.tpcmd
+rm -rf "$work.before" && cp -a "$work" "$work.before"
+# A bad scene after a good one: every scene is read before any stream is written.
+echo '{' > bad.json
+rm -rf "$work.before" && cp -a "$work" "$work.before"
+status=0
+out=$("$tp" record scene.json bad.json --dir dir 2>&1 >/dev/null) || status=$?
+if [ "$status" != 1 ] || ! grep -q "bad.json" <<<"$out" || [ -n "$(ls -A dir)" ]; then
+  echo "FAIL: a bad second scene: status $status, '$out', dir holds '$(ls -A dir)'"; fail=1
+else
+  echo "ok: a bad second scene writes no stream: $out"
+fi
+rm bad.json
+
+"$tp" render scene.json --method gouraud --size 64x48 -o a.png >/dev/null
+"$tp" render scene.json --method flat --size 64x48 -o b.png >/dev/null
+ln -s b.png b-link.png
+rm -rf "$work.before" && cp -a "$work" "$work.before"
+refused "compare --diff over the first image" "a.png is the first image a.png: nothing written" \
+  compare a.png b.png --diff a.png
+refused "compare --diff over the second image, by a link" \
+  "b-link.png is the second image b.png" compare a.png b.png --diff b-link.png
+refused "compare --diff over the second image, by another path" "is the second image b.png" \
+  compare a.png b.png --diff ./sub/../b.png
+"$tp" record scene.json --size 64x48 -o s.tpcmd >/dev/null
+ln -s s.tpcmd s-link.png
+rm -rf "$work.before" && cp -a "$work" "$work.before"
+refused "replay -o over its stream, through a link" "s-link.png is the stream s.tpcmd" \
+  replay s.tpcmd -o s-link.png
+
+# Good outputs: a new stream, a new difference image, both real files.
+"$tp" record scene.json --size 64x48 -o new.tpcmd >/dev/null && [ -s new.tpcmd ] ||
+  { echo "FAIL: record to a new file"; fail=1; }
+"$tp" record mesh.json scene.json --size 64x48 --dir dir >/dev/null &&
+  [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
+"$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||
+  { echo "FAIL: compare --diff to a new file"; fail=1; }
+cmp -s scene.json "$scenes/triangle.json" && cmp -s quad.obj "$scenes/quad.obj" ||
+  { echo "FAIL: an input changed"; fail=1; }
+
+[ $fail -eq 0 ] && echo "outputs over inputs: all refused"
+exit $fail
