@@ -5,7 +5,11 @@
 #pragma once
 
 #include <filesystem>
+#include <iostream>
+#include <string>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace tp::host {
 
@@ -15,6 +19,38 @@ inline bool same_file(const std::filesystem::path& a, const std::filesystem::pat
   std::error_code e;
   const bool same = std::filesystem::equivalent(a, b, e);
   return same && !e;
+}
+
+// Whether two outputs would be one file: the same file where both exist, else the same path made
+// absolute and normal, links of its existing folders followed (`./x`, `dir/../x` and `x`).
+inline bool same_output(const std::filesystem::path& a, const std::filesystem::path& b) {
+  if (same_file(a, b)) return true;
+  std::error_code e;
+  const auto full = [&](const std::filesystem::path& p) {
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(p, e), e);
+  };
+  const std::filesystem::path fa = full(a), fb = full(b);
+  return !e && fa == fb;
+}
+
+// A file a command reads, and how a refusal names it.
+struct Input {
+  std::filesystem::path path;
+  std::string what;  // "the scene file scenes/teapot.json"
+};
+
+// An output that is one of the inputs, by any name, is refused before anything is written: true
+// after the message on stderr, for exit status 2. Empty outputs (options not given) are skipped.
+inline bool writes_over_input(std::string_view command, const std::vector<std::string>& outputs,
+                              const std::vector<Input>& inputs) {
+  for (const std::string& out : outputs)
+    for (const Input& in : inputs)
+      if (!out.empty() && same_file(out, in.path)) {
+        std::cerr << "tinyphong " << command << ": " << out << " is " << in.what
+                  << ": nothing written\n";
+        return true;
+      }
+  return false;
 }
 
 }  // namespace tp::host

@@ -129,32 +129,13 @@ Scene load(const SceneOptions& o) {
   return s;
 }
 
-// A file a command reads, and how its refusal names it.
-struct Input {
-  std::filesystem::path path;
-  std::string what;  // "the scene file scenes/teapot.json"
-};
-
+// What a scene's refusal of an output names: the scene file and the meshes it names.
 std::vector<Input> inputs_of(const Scene& scene) {
   std::vector<Input> inputs{{scene.file, "the scene file " + scene.file}};
   for (const MeshSpec& m : scene.meshes)
     if (!m.obj.empty())
       inputs.push_back({m.obj, "the mesh " + m.obj.string() + " of " + scene.file});
   return inputs;
-}
-
-// An output that is one of the inputs, by any name (host/file_identity.hpp), is refused before
-// anything is written: true after the message, for exit status 2. Empty outputs are not asked for.
-bool writes_over_input(std::string_view command, const std::vector<std::string>& outputs,
-                       const std::vector<Input>& inputs) {
-  for (const std::string& out : outputs)
-    for (const Input& in : inputs)
-      if (!out.empty() && same_file(out, in.path)) {
-        std::cerr << "tinyphong " << command << ": " << out << " is " << in.what
-                  << ": nothing written\n";
-        return true;
-      }
-  return false;
 }
 
 // The device's buffers sized for the scene's meshes: DeviceRenderer's defaults hold 2^17
@@ -211,6 +192,11 @@ int run_reference(const SceneOptions& o, const std::string& out, const std::stri
                   bool angular) {
   const Scene scene = load(o);
   if (writes_over_input("reference", {out, exr}, inputs_of(scene))) return 2;
+  if (!exr.empty() && same_output(exr, out)) {
+    std::cerr << "tinyphong reference: --exr " << exr << " is -o " << out
+              << ", the image it would replace: nothing written\n";
+    return 2;
+  }
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);  // the same checks as a device render: one definition of "valid"
@@ -289,15 +275,13 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
   return 0;
 }
 
-// The command words the driver sends for one frame of the scene, as a .tpcmd file.
-void record_one(const Scene& scene, double rotate_deg, const std::string& out) {
+// The command words the driver sends for one frame of the scene (the device's checks of the
+// scene, as a render's, throw here).
+std::vector<std::uint32_t> record_words(const Scene& scene, double rotate_deg) {
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);
-  const std::vector<std::uint32_t> words = device.record(radians(rotate_deg));
-  write_command_file(out, words);
-  std::cout << "recorded " << scene.name << " (" << scene.width << "x" << scene.height << ", "
-            << scene.method << "): " << words.size() << " words -> " << out << "\n";
+  return device.record(radians(rotate_deg));
 }
 
 struct RecordCli {
@@ -307,9 +291,10 @@ struct RecordCli {
 };
 
 // One scene to -o FILE, or several (one process: the build records 240 streams) into --dir
-// as DIR/<scene file's stem>.tpcmd. Every scene is read and every output checked before any
-// stream is written: a bad scene, two scenes of one output, or an output that is one of the
-// inputs, writes nothing.
+// as DIR/<scene file's stem>.tpcmd. Every scene is read, every output checked and every
+// stream recorded before any is written: a bad scene (one that does not parse, or one the
+// device's checks refuse), two scenes of one output, or an output that is one of the inputs,
+// writes nothing.
 int run_record(const RecordCli& cli) {
   if (cli.out.empty() == cli.dir.empty() || (!cli.out.empty() && cli.scenes.size() != 1)) {
     std::cerr << "tinyphong record: give either -o FILE (one scene) or --dir DIR\n";
@@ -329,7 +314,7 @@ int run_record(const RecordCli& cli) {
                                    : cli.out);
     // Two scenes of one name in different folders would write one file.
     const auto same = std::find_if(outs.begin(), outs.end() - 1, [&](const std::string& o) {
-      return o == outs.back() || same_file(o, outs.back());
+      return same_output(o, outs.back());
     });
     if (same != outs.end() - 1) {
       std::cerr << "tinyphong record: " << cli.scenes[static_cast<std::size_t>(same - outs.begin())]
@@ -340,8 +325,14 @@ int run_record(const RecordCli& cli) {
   std::vector<Input> inputs;
   for (const Scene& scene : scenes) std::ranges::copy(inputs_of(scene), std::back_inserter(inputs));
   if (writes_over_input("record", outs, inputs)) return 2;
-  for (std::size_t i = 0; i < scenes.size(); ++i)
-    record_one(scenes[i], cli.options.rotate_deg, outs[i]);
+  std::vector<std::vector<std::uint32_t>> streams;
+  for (const Scene& scene : scenes) streams.push_back(record_words(scene, cli.options.rotate_deg));
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    write_command_file(outs[i], streams[i]);
+    const Scene& scene = scenes[i];
+    std::cout << "recorded " << scene.name << " (" << scene.width << "x" << scene.height << ", "
+              << scene.method << "): " << streams[i].size() << " words -> " << outs[i] << "\n";
+  }
   return 0;
 }
 

@@ -53,6 +53,10 @@ inline constexpr int kChannels = 3 + kMaxTerminators;  // colours (Q.14 levels),
 // exact — the reference the budget is measured against (tests, docs).
 enum class AdaptiveMode : std::uint8_t { kAdaptive, kNoSkip, kExactOnly };
 
+// How a light's N·L behaves over a cell of the subdivision: positive (lit) or negative (dark) all
+// over it, or neither (its terminator crosses the cell: clamped per pixel).
+enum class TerminatorSign : std::uint8_t { kLit, kDark, kCrossing };
+
 class KbAdaptiveMethod final : public ShadingMethod {
  public:
   enum class Path : std::uint8_t { kConstant, kLinear, kQuadratic, kSubdivided, kExact };
@@ -84,6 +88,11 @@ class KbAdaptiveMethod final : public ShadingMethod {
 
  private:
   static constexpr Cell kWhole{0, 0, 0, true};
+  // A terminator's N·L quadratic over a cell, fitted through its six samples, and its sign there.
+  struct TerminatorFit {
+    LocalQuadratic nl;
+    TerminatorSign sign = TerminatorSign::kLit;
+  };
   // A leaf of the subdivision: its cell and quadratics, or exact (over budget at the deepest
   // level: evaluated per pixel).
   struct Leaf {
@@ -140,7 +149,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void mark(const Cell& c, std::uint16_t leaf);
   void choose_cheap_path(std::int64_t err0);
   int peak_level(const Cell& c, std::uint32_t& peaks);
-  void add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[]);
+  void add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[], bool checked);
   Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
   std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
@@ -195,6 +204,10 @@ class KbAdaptiveMethod final : public ShadingMethod {
   std::uint32_t terminator_mask_ = 0;                  // those lights (PointShader's light numbers)
   std::int64_t term_weight_[kMaxTerminators][3] = {};  // kd·O_c·Il_c, levels Q.14 per unit N·L
   std::int64_t term_worst_[kMaxTerminators] = {};      // max over c of term_weight_
+  // Each terminator's fit over the cell classified last. add_leaf of the cell check_error has just
+  // classified reuses it instead of fitting and classifying again. Here, not on the stack: 448
+  // bytes on the Cortex-M (docs/DECISIONS.md, "kb-adaptive's leaves reuse their check's fits").
+  TerminatorFit fits_[kMaxTerminators];
   std::uint16_t leaf_up_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint16_t leaf_down_[1 << kMaxLevel][1 << kMaxLevel] = {};
   std::uint32_t omega_n_ = 0;  // the exponent omega_ was made for

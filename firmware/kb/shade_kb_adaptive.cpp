@@ -251,8 +251,6 @@ std::int64_t channel_error(const std::int32_t* const v[15], int ch) {
   }
 }
 
-enum class TerminatorSign : std::uint8_t { kLit, kDark, kCrossing };
-
 // How a terminator's N·L behaves over a cell, from its six samples: the exact N·L keeps its sign
 // where the quadratic through them does over the cell (their range widened by the quadratic's
 // departure from the vertex plane), widened again by a bound on the quadratic's error (err: its
@@ -275,7 +273,8 @@ TerminatorSign terminator_sign(const Samples6& samples, std::int64_t err, LocalQ
 // that is not lit over the whole cell its N·L error (Q.24) times its heaviest channel weight —
 // max(0, ·) is 1-Lipschitz. A lit one adds nothing: its unclamped diffuse in the colours is the
 // exact one there (add_leaf makes the same test).
-// nl_error[t]: terminator t's N·L error at the check points (Q.24), for add_leaf.
+// nl_error[t]: terminator t's N·L error at the check points (Q.24), for add_leaf; fits_[t] its
+// N·L quadratic and sign over the cell, which add_leaf of this same cell reuses.
 std::int64_t KbAdaptiveMethod::check_error(const Cell& cell, std::int64_t nl_error[]) {
   const std::int32_t* v[15];
   cell_points(cell, v);
@@ -285,9 +284,8 @@ std::int64_t KbAdaptiveMethod::check_error(const Cell& cell, std::int64_t nl_err
     const std::int64_t err = channel_error(v, 3 + t);
     nl_error[t] = err;
     const int ch = 3 + t;
-    LocalQuadratic nl;
-    const TerminatorSign sign = terminator_sign(
-        Samples6{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}}, err, nl);
+    const TerminatorSign sign = fits_[t].sign = terminator_sign(
+        Samples6{{v[0][ch], v[1][ch], v[2][ch], v[3][ch], v[4][ch], v[5][ch]}}, err, fits_[t].nl);
     if (sign == TerminatorSign::kDark) dark |= 1u << t;
     if (sign == TerminatorSign::kCrossing)
       crossing += (err * term_worst_[t] + (std::int64_t{1} << 24) - 1) >> 24;
@@ -362,7 +360,10 @@ void KbAdaptiveMethod::mark(const Cell& c, std::uint16_t leaf) {
 // sign over the cell needs no clamp there: lit, its unclamped diffuse is exact; dark, the
 // exact diffuse is 0, so its N·L quadratic times the weights is taken off the colours'.
 // nl_error[t]: a bound on terminator t's N·L error at the check points (check_error's).
-void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[]) {
+// checked: c is the cell check_error looked at last, so its terminators' fits are in fits_;
+// otherwise they are made here (into fits_ too). Read only for a quadratic leaf.
+void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[],
+                                bool checked) {
   if (path_ == Path::kSubdivided) ++counters_->subtriangles;  // (not a whole-triangle leaf)
   if (!quadratic) ++counters_->subtriangles_exact;
   Leaf& leaf = leaves_[leaf_count_];
@@ -381,8 +382,10 @@ void KbAdaptiveMethod::add_leaf(const Cell& c, bool quadratic, const std::int64_
     int crossings = 0;
     bool pool_full = false;
     for (int t = 0; t < terminators_; ++t) {
-      LocalQuadratic nl;
-      const TerminatorSign sign = terminator_sign(samples_of(c, 3 + t), nl_error[t], nl);
+      TerminatorFit& fit = fits_[t];
+      if (!checked) fit.sign = terminator_sign(samples_of(c, 3 + t), nl_error[t], fit.nl);
+      const TerminatorSign sign = fit.sign;
+      const LocalQuadratic& nl = fit.nl;
       if (sign == TerminatorSign::kLit) continue;
       if (sign == TerminatorSign::kDark) {
         for (int ch = 0; ch < 3; ++ch) {
@@ -452,14 +455,15 @@ void KbAdaptiveMethod::refine(const Cell& c, bool guarded, std::uint32_t peaks) 
   const std::int64_t err = guarded ? 0 : check_error(c, nl_error);
   const bool passes = !guarded && err <= estimate_budget_;
   if (passes || c.level == kMaxLevel) {
-    add_leaf(c, passes, nl_error);
+    // checked: a guarded cell was not, but then it is no quadratic leaf and needs no fits.
+    add_leaf(c, passes, nl_error, true);
     return true;
   }
   if (smooth_ && c.level == kMaxLevel - 1 && err <= trusted_miss_) {
     counters_->subtriangles_unchecked += 4;
     Cell kids[4];
     children_of(c, kids);
-    for (const Cell& k : kids) add_leaf(k, true, nl_error);
+    for (const Cell& k : kids) add_leaf(k, true, nl_error, false);
     return true;
   }
   return false;
@@ -549,7 +553,7 @@ bool KbAdaptiveMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
     level_ = kMaxLevel;
     leaf_count_ = 0;
     crossing_count_ = 0;
-    add_leaf(kWhole, true, nl_error);
+    add_leaf(kWhole, true, nl_error, true);
   } else {
     // The cost of refining, guessed from the guard and from the h³ law of quadratic
     // interpolation (each halving of the size divides the error by 8) applied to err0,

@@ -3,8 +3,8 @@
 # the scene file or a mesh it names, `compare --diff` over either image it compares, `replay -o`
 # over its stream. The same file by any name is refused (the path itself, ./dir/../, a symbolic
 # link, a hard link), with exit status 2, a message naming the input and every file left as it
-# was; with several scenes a bad one makes `record` write no stream at all. Good outputs still
-# work.
+# was; with several scenes a bad one (unreadable, or refused by the device's checks) makes `record`
+# write no stream at all; `reference` refuses an --exr that is its -o. Good outputs still work.
 # Usage: cli_outputs_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -66,24 +66,46 @@ refused "reference over its scene, through a link" "link.png is the scene file s
   reference scene.json -o link.png
 refused "reference --exr over its scene, through a link" "link.exr is the scene file scene.json" \
   reference scene.json -o ref.png --exr link.exr
+refused "reference --exr over its own -o" "--exr out.exr is -o ./out.exr, the image it would replace" \
+  reference scene.json -o ./out.exr --exr out.exr
 # --dir: DIR/scene.tpcmd is a link to the other scene's file.
 ln -s ../mesh.json dir/scene.tpcmd
 rm -rf "$work.before" && cp -a "$work" "$work.before"
 refused "record --dir over another scene" "dir/scene.tpcmd is the scene file mesh.json" \
   record mesh.json scene.json --dir dir
 rm dir/scene.tpcmd
+# --dir: two streams that exist as one file (hard links) would be written one over the other.
+cp scene.json a.json
+cp scene.json b.json
+echo old > dir/a.tpcmd
+ln dir/a.tpcmd dir/b.tpcmd
 rm -rf "$work.before" && cp -a "$work" "$work.before"
-# A bad scene after a good one: every scene is read before any stream is written.
+refused "record --dir to two names of one file" "a.json and b.json would both be recorded to dir/b.tpcmd" \
+  record a.json b.json --dir dir
+rm a.json b.json dir/a.tpcmd dir/b.tpcmd
+# A bad scene after a good one: every scene is read and recorded before any stream is written.
+# bad.json does not parse; far.json parses, but its light is beyond the device's Q15.16 eye
+# space, which only the device's checks of the scene find.
 echo '{' > bad.json
-rm -rf "$work.before" && cp -a "$work" "$work.before"
-status=0
-out=$("$tp" record scene.json bad.json --dir dir 2>&1 >/dev/null) || status=$?
-if [ "$status" != 1 ] || ! grep -q "bad.json" <<<"$out" || [ -n "$(ls -A dir)" ]; then
-  echo "FAIL: a bad second scene: status $status, '$out', dir holds '$(ls -A dir)'"; fail=1
-else
-  echo "ok: a bad second scene writes no stream: $out"
-fi
-rm bad.json
+cat > far.json <<'JSON'
+{
+  "camera": {"type": "perspective", "position": [-10000, -10000, -10000], "target": [0, 0, 0],
+             "up": [0, 1, 0], "fov_y": 30},
+  "lights": [{"type": "point", "position": [10000, 10000, 10000]}],
+  "meshes": [{"generator": "triangle"}]
+}
+JSON
+for second in bad.json far.json; do
+  status=0
+  out=$("$tp" record scene.json "$second" --dir dir 2>&1 >/dev/null) || status=$?
+  if [ "$status" != 1 ] || ! grep -q "$second" <<<"$out" || [ -n "$(ls -A dir)" ]; then
+    echo "FAIL: a bad second scene $second: status $status, '$out', dir holds '$(ls -A dir)'"
+    fail=1
+  else
+    echo "ok: a bad second scene $second writes no stream: $out"
+  fi
+done
+rm bad.json far.json
 
 "$tp" render scene.json --method gouraud --size 64x48 -o a.png >/dev/null
 "$tp" render scene.json --method flat --size 64x48 -o b.png >/dev/null
