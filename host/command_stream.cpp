@@ -1,16 +1,11 @@
 #include "host/command_stream.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <iterator>
 
+#include "host/replace_file.hpp"
 #include "host/text_file.hpp"
 #include "target/fnv1a.hpp"
 
@@ -286,44 +281,8 @@ std::vector<std::uint32_t> read_command_file(const std::string& path) {
   return words;
 }
 
-namespace {
-// All the words to an open descriptor; false if any write fails.
-bool write_all(int fd, std::span<const std::uint32_t> words) {
-  const auto* bytes = reinterpret_cast<const char*>(words.data());
-  for (std::size_t done = 0, size = words.size_bytes(); done < size;) {
-    const ssize_t n = ::write(fd, bytes + done, size - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-}  // namespace
-
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words) {
-  // A new or regular file is written beside it and renamed over it, so that a write that fails
-  // part-way (a full disk) leaves the file that was there, not a stream cut short. Anything else
-  // (a symbolic link, /dev/stdout, a pipe) is written through, as it is.
-  std::error_code e;
-  const auto kind = std::filesystem::symlink_status(path, e).type();
-  const bool replace =
-      kind == std::filesystem::file_type::not_found || kind == std::filesystem::file_type::regular;
-  const std::string file = replace ? path + ".part" : path;  // the one opened and written
-  // O_EXCL | O_NOFOLLOW: PATH.part is this call's own file, never one that was there (a stale
-  // one, or a link that would send the words elsewhere), so removing it on failure is safe.
-  const int fd = replace ? ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666)
-                         : ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
-  if (fd < 0) {
-    const bool stale = replace && errno == EEXIST;
-    throw std::runtime_error(
-        path + ": cannot write" +
-        (stale ? " (" + file + " exists: left by an interrupted record?)" : ""));
-  }
-  const bool written = write_all(fd, words);
-  const bool closed = ::close(fd) == 0;
-  if (written && closed && (!replace || std::rename(file.c_str(), path.c_str()) == 0)) return;
-  if (replace) std::filesystem::remove(file, e);
-  throw std::runtime_error(path + ": cannot write");
+  replace_file(path, std::as_bytes(words));  // the host's order is the file's (above)
 }
 
 std::uint64_t framebuffer_hash(const fw::FramebufferView& fb) {

@@ -15,5 +15,6 @@ add_library(tp_stress STATIC ${CMAKE_CURRENT_LIST_DIR}/stress.cpp
                              ${CMAKE_CURRENT_LIST_DIR}/stress_bounds.cpp)
 target_link_libraries(tp_stress PUBLIC tp_driver)
 target_link_libraries(tp_driver PUBLIC tp_host tp_command_stream tp_firmware)
-add_executable(tinyphong ${CMAKE_CURRENT_LIST_DIR}/tinyphong.cpp)
+add_executable(tinyphong ${CMAKE_CURRENT_LIST_DIR}/tinyphong.cpp
+                         ${CMAKE_CURRENT_LIST_DIR}/stress_command.cpp)
 target_link_libraries(tinyphong PRIVATE tp_driver tp_stress CLI11::CLI11)

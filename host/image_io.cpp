@@ -1,21 +1,37 @@
 #include "host/image_io.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <memory>
+#include <span>
+#include <vector>
+
+#include "host/replace_file.hpp"
 
 namespace tp::host {
 
 namespace {
 
+// Encodes the image in memory and writes the file whole (replace_file): OpenImageIO's PNG writer
+// does not report a write that fails part-way, so a full disk left a cut-off PNG, the old one lost,
+// and the command exited 0. The format is the file name's extension's, as OpenImageIO chooses it.
 template <class T>
 void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc type,
                  const T* data) {
   auto out = OIIO::ImageOutput::create(file.string());
   if (!out) throw ImageIoError("cannot write " + file.string() + ": " + OIIO::geterror());
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
   const OIIO::ImageSpec spec(w, h, 3, type);
-  if (!out->open(file.string(), spec) || !out->write_image(type, data) || !out->close())
+  if (!out->set_ioproxy(&memory) || !out->open(file.string(), spec) ||
+      !out->write_image(type, data) || !out->close())
     throw ImageIoError("cannot write " + file.string() + ": " + out->geterror());
+  try {
+    replace_file(file.string(), std::as_bytes(std::span(bytes)));
+  } catch (const std::runtime_error& e) {  // "FILE: cannot write", as a stream's
+    throw ImageIoError(e.what());
+  }
 }
 
 // Reads all pixels as `type`, keeping the first three channels (grey, with or without alpha, is

@@ -12,14 +12,11 @@
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <iostream>
 #include <iterator>
 #include <optional>
@@ -38,7 +35,7 @@
 #include "host/reference.hpp"
 #include "host/scene.hpp"
 #include "host/size_text.hpp"
-#include "host/stress.hpp"
+#include "host/stress_command.hpp"
 
 namespace {
 
@@ -80,27 +77,6 @@ const CLI::Validator kAngle(
       return "";
     },
     "DEGREES");
-
-// A seed: a whole decimal number that fits 64 bits, written as it is read (CLI11 alone took -1 as
-// 2^64 − 1, clamped 2^64 and beyond to it, read "" as 0 and "0x10" as 16).
-const CLI::Validator kSeed(
-    [](std::string& text) -> std::string {
-      std::uint64_t v = 0;
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-      if (text.empty() || ec != std::errc() || end != text.data() + text.size())
-        return "a whole number in 0.." + std::to_string(UINT64_MAX) + ", got '" + text + "'";
-      return "";
-    },
-    "SEED");
-
-// Writes a file whole or throws naming it: the stream's state is checked after the last byte
-// was flushed and the file closed (a full disk showed only then, and the run exited 0).
-void write_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  std::ofstream f(path);
-  if (f) write(f);
-  if (f) f.close();
-  if (!f) throw std::runtime_error("cannot write " + path);
-}
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("scene", o.scene, "scene file (JSON), e.g. scenes/teapot.json")
@@ -432,75 +408,6 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
   return 0;
 }
 
-struct StressCli {
-  stress::Options options;
-  std::string json;
-  std::string bounds_out;
-  bool list = false;
-};
-
-void list_cases() {
-  for (const stress::Case& c : stress::cases())
-    std::cout << c.name << (c.quick ? "\tquick\t" : "\t\t") << c.family << "\t" << c.what << "\n";
-}
-
-// Exit status 0 when every result is within its documented bound, 1 otherwise, 2 when the
-// options are bad or select nothing, 3 when an output file cannot be written.
-int run_stress(const StressCli& cli) {
-  if (cli.list) {
-    list_cases();
-    return 0;
-  }
-  const auto results = stress::run(cli.options, [](const stress::Result& r) {
-    std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
-              << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
-              << stress::verdict_name(r.verdict) << "\n";
-  });
-  if (results.empty()) {
-    std::cerr << "tinyphong stress: no case matches --cases '" << cli.options.case_filter << "'\n";
-    return 2;
-  }
-  stress::print_tables(std::cout, results);
-  if (cli.options.seed != stress::kDefaultSeed)
-    std::cout << "(the bounds were measured at the default seed, " << stress::kDefaultSeed
-              << "; at seed " << cli.options.seed
-              << " the cases are other scenes, and a verdict says how far the default seed's "
-                 "bounds carry to them: docs/STABILITY.md, \"Seeds\")\n";
-  try {
-    if (!cli.json.empty())
-      write_file(cli.json, [&](std::ostream& f) { stress::write_json(f, results, cli.options); });
-    if (!cli.bounds_out.empty())
-      write_file(cli.bounds_out, [&](std::ostream& f) { stress::write_bounds_table(f, results); });
-  } catch (const std::runtime_error& e) {
-    std::cerr << "tinyphong stress: " << e.what() << "\n";
-    return 3;
-  }
-  return stress::all_within(results) ? 0 : 1;
-}
-
-void add_stress(CLI::App& app, StressCli& cli) {
-  auto* cmd = app.add_subcommand(
-      "stress",
-      "numerical stress suite: every method against the double reference on hard cases, "
-      "with a verdict against its documented bound (docs/STABILITY.md)");
-  cmd->add_flag("--quick", cli.options.quick, "only the quick subset (what the CTest runs)");
-  cmd->add_option("--methods", cli.options.methods, "comma-separated methods (default: all)")
-      ->delimiter(',')
-      ->check(method_check());
-  cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
-  cmd->add_option("--seed", cli.options.seed,
-                  "seed of the cases' random parts (the bounds are the default seed's)")
-      ->check(kSeed);
-  cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
-  cmd->add_flag("--list", cli.list, "list the cases and exit");
-  cmd->add_option("--images", cli.options.image_dir,
-                  "write each case's reference and device images (PNG) into this folder")
-      ->check(CLI::ExistingDirectory);
-  cmd->add_option("--pin-bounds", cli.bounds_out,
-                  "write the measured results as host/stress_bounds.cpp's table rows, with the "
-                  "documented margin (docs/STABILITY.md says when that is allowed)");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -587,14 +494,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0u, tp::fw::kMaxIndexCapacity));
 
   StressCli stress_cli;
-  add_stress(app, stress_cli);
+  add_stress_command(app, stress_cli);
 
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
     if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
-    if (app.got_subcommand("stress")) return run_stress(stress_cli);
+    if (app.got_subcommand("stress")) return run_stress_command(stress_cli);
     if (*record) return run_record(rec);
     if (*replay) return run_replay(rep_in, rep_out, rep_hash);
     if (*memory) return run_memory(mem_vertices, mem_indices);

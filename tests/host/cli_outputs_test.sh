@@ -4,7 +4,8 @@
 # over its stream. The same file by any name is refused (the path itself, ./dir/../, a symbolic
 # link, a hard link), with exit status 2, a message naming the input and every file left as it
 # was; with several scenes a bad one (unreadable, or refused by the device's checks) makes `record`
-# write no stream at all; `reference` refuses an --exr that is its -o. Good outputs still work.
+# write no stream at all; `reference` refuses an --exr that is its -o. And a write that fails
+# part-way keeps the old file, for every image and file the CLI writes. Good outputs still work.
 # Usage: cli_outputs_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -122,6 +123,41 @@ ln -s s.tpcmd s-link.png
 rm -rf "$work.before" && cp -a "$work" "$work.before"
 refused "replay -o over its stream, through a link" "s-link.png is the stream s.tpcmd" \
   replay s.tpcmd -o s-link.png
+
+# A write that fails part-way (here the file size limit, 2 KiB: every image below is larger) keeps
+# the file that was there, whole, and leaves no FILE.part: each writer encodes in memory and
+# renames a finished FILE.part over FILE (host/replace_file.hpp). OpenImageIO's PNG writer does
+# not report such a failure: the old tool wrote 2 KiB of PNG, lost the old image and exited 0.
+# kept NAME FILE STATUS ARGS...: exit STATUS, "FILE: cannot write" on stderr, FILE as before.
+kept() {
+  local name=$1 file=$2 want=$3 out status=0
+  shift 3
+  echo old > "$file"
+  out=$(trap '' XFSZ; ulimit -f 2; "$tp" "$@" 2>&1 >/dev/null) || status=$?
+  if [ "$status" != "$want" ] || ! grep -qF -- "$file: cannot write" <<<"$out" ||
+     [ "$(cat "$file")" != old ] || [ -e "$file.part" ]; then
+    echo "FAIL: $name: status $status, '$out', $file holds $(wc -c < "$file") bytes or $file.part left"
+    fail=1
+  else
+    echo "ok: $name: $(tail -n 1 <<<"$out")"
+  fi
+  rm -f "$file"
+}
+kept "render, a failed write" big.png 1 render scene.json --size 400x400 -o big.png
+kept "reference, a failed write" big.png 1 reference scene.json --size 400x400 -o big.png
+ln -s /dev/null sub/null.png  # the PNG through a link to a device, beyond the limit's reach
+kept "reference --exr, a failed write" big.exr 1 \
+  reference scene.json --size 400x400 -o sub/null.png --exr big.exr
+"$tp" render scene.json --method gouraud --size 400x400 -o sub/g.png >/dev/null
+"$tp" render scene.json --method flat --size 400x400 -o sub/f.png >/dev/null
+kept "compare --diff, a failed write" big.png 1 compare sub/g.png sub/f.png --diff big.png
+"$tp" record scene.json --size 400x400 -o sub/big.tpcmd >/dev/null
+kept "replay -o, a failed write" big.png 1 replay sub/big.tpcmd -o big.png
+mkdir images
+kept "stress --images, a failed write" images/ab-min.reference.png 1 \
+  stress --cases ab-min --methods flat --images images
+kept "stress --json, a failed write" big.json 3 stress --cases ab-min --json big.json
+rm -rf sub/* images
 
 # Good outputs: a new stream, a new difference image, both real files.
 "$tp" record scene.json --size 64x48 -o new.tpcmd >/dev/null && [ -s new.tpcmd ] ||

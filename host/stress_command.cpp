@@ -1,0 +1,101 @@
+#include "host/stress_command.hpp"
+
+#include <charconv>
+#include <cstdint>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "host/cli_options.hpp"
+#include "host/replace_file.hpp"
+
+namespace tp::host {
+
+namespace {
+
+// A seed: a whole decimal number that fits 64 bits, written as it is read (CLI11 alone took -1 as
+// 2^64 − 1, clamped 2^64 and beyond to it, read "" as 0 and "0x10" as 16).
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+      std::uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+        return "a whole number in 0.." + std::to_string(UINT64_MAX) + ", got '" + text + "'";
+      return "";
+    },
+    "SEED");
+
+// Writes a file whole or throws naming it, the old file kept (host/replace_file.hpp): the text is
+// formed in memory first, so a full disk cannot leave half of it.
+void write_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  std::ostringstream text;
+  write(text);
+  replace_file(path, text.view());
+}
+
+void list_cases() {
+  for (const stress::Case& c : stress::cases())
+    std::cout << c.name << (c.quick ? "\tquick\t" : "\t\t") << c.family << "\t" << c.what << "\n";
+}
+
+}  // namespace
+
+int run_stress_command(const StressCli& cli) {
+  if (cli.list) {
+    list_cases();
+    return 0;
+  }
+  const auto results = stress::run(cli.options, [](const stress::Result& r) {
+    std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
+              << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
+              << stress::verdict_name(r.verdict) << "\n";
+  });
+  if (results.empty()) {
+    std::cerr << "tinyphong stress: no case matches --cases '" << cli.options.case_filter << "'\n";
+    return 2;
+  }
+  stress::print_tables(std::cout, results);
+  if (cli.options.seed != stress::kDefaultSeed)
+    std::cout << "(the bounds were measured at the default seed, " << stress::kDefaultSeed
+              << "; at seed " << cli.options.seed
+              << " the cases are other scenes, and a verdict says how far the default seed's "
+                 "bounds carry to them: docs/STABILITY.md, \"Seeds\")\n";
+  try {
+    if (!cli.json.empty())
+      write_file(cli.json, [&](std::ostream& f) { stress::write_json(f, results, cli.options); });
+    if (!cli.bounds_out.empty())
+      write_file(cli.bounds_out, [&](std::ostream& f) { stress::write_bounds_table(f, results); });
+  } catch (const std::runtime_error& e) {
+    std::cerr << "tinyphong stress: " << e.what() << "\n";
+    return 3;
+  }
+  return stress::all_within(results) ? 0 : 1;
+}
+
+void add_stress_command(CLI::App& app, StressCli& cli) {
+  auto* cmd = app.add_subcommand(
+      "stress",
+      "numerical stress suite: every method against the double reference on hard cases, "
+      "with a verdict against its documented bound (docs/STABILITY.md)");
+  cmd->add_flag("--quick", cli.options.quick, "only the quick subset (what the CTest runs)");
+  cmd->add_option("--methods", cli.options.methods, "comma-separated methods (default: all)")
+      ->delimiter(',')
+      ->check(method_check());
+  cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
+  cmd->add_option("--seed", cli.options.seed,
+                  "seed of the cases' random parts (the bounds are the default seed's)")
+      ->check(kSeed);
+  cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
+  cmd->add_flag("--list", cli.list, "list the cases and exit");
+  cmd->add_option("--images", cli.options.image_dir,
+                  "write each case's reference and device images (PNG) into this folder")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--pin-bounds", cli.bounds_out,
+                  "write the measured results as host/stress_bounds.cpp's table rows, with the "
+                  "documented margin (docs/STABILITY.md says when that is allowed)");
+}
+
+}  // namespace tp::host
