@@ -15,21 +15,28 @@ namespace {
 
 // Encodes the image in memory and writes the file whole (replace_file): OpenImageIO's PNG writer
 // does not report a write that fails part-way, so a full disk left a cut-off PNG, the old one lost,
-// and the command exited 0. The format is the file name's extension's, as OpenImageIO chooses it.
+// and the command exited 0. The format is the file name's extension's, as OpenImageIO chooses it;
+// one whose writer cannot write into memory is refused (PNG, EXR, TIFF, JPEG and most others can).
 template <class T>
 void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc type,
                  const T* data) {
-  auto out = OIIO::ImageOutput::create(file.string());
-  if (!out) throw ImageIoError("cannot write " + file.string() + ": " + OIIO::geterror());
+  // Declared before the writer, so that they outlive it: an ImageOutput closes itself when it is
+  // destroyed, writing through its proxy.
   std::vector<unsigned char> bytes;
   OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) throw ImageIoError("cannot write " + file.string() + ": " + OIIO::geterror());
+  if (!out->supports("ioproxy"))
+    throw ImageIoError("cannot write " + file.string() + ": OpenImageIO's " + out->format_name() +
+                       " writer cannot write into memory, which writing the file whole needs "
+                       "(write .png, .exr or .tif)");
   const OIIO::ImageSpec spec(w, h, 3, type);
   if (!out->set_ioproxy(&memory) || !out->open(file.string(), spec) ||
       !out->write_image(type, data) || !out->close())
     throw ImageIoError("cannot write " + file.string() + ": " + out->geterror());
   try {
     replace_file(file.string(), std::as_bytes(std::span(bytes)));
-  } catch (const std::runtime_error& e) {  // "FILE: cannot write", as a stream's
+  } catch (const std::runtime_error& e) {  // "FILE: cannot write: CAUSE", as a stream's
     throw ImageIoError(e.what());
   }
 }

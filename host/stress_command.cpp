@@ -8,8 +8,10 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "host/cli_options.hpp"
+#include "host/image_io.hpp"
 #include "host/replace_file.hpp"
 
 namespace tp::host {
@@ -48,11 +50,17 @@ int run_stress_command(const StressCli& cli) {
     list_cases();
     return 0;
   }
-  const auto results = stress::run(cli.options, [](const stress::Result& r) {
-    std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
-              << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
-              << stress::verdict_name(r.verdict) << "\n";
-  });
+  std::vector<stress::Result> results;
+  try {
+    results = stress::run(cli.options, [](const stress::Result& r) {
+      std::cerr << "  " << r.case_name << " / " << r.method << ": max " << r.error.max_abs
+                << ", mean " << r.error.mean_abs << ", sat " << r.saturations << ", "
+                << stress::verdict_name(r.verdict) << "\n";
+    });
+  } catch (const ImageIoError& e) {  // --images: a file not written is no result out of bounds
+    std::cerr << "tinyphong stress: " << e.what() << "\n";
+    return 3;
+  }
   if (results.empty()) {
     std::cerr << "tinyphong stress: no case matches --cases '" << cli.options.case_filter << "'\n";
     return 2;

@@ -21,7 +21,7 @@ struct StressCli {
 void add_stress_command(CLI::App& app, StressCli& cli);
 
 // Exit status 0 when every result is within its documented bound, 1 otherwise, 2 when the
-// options select nothing, 3 when an output file cannot be written.
+// options select nothing, 3 when an output file (the JSON, the bounds, an image) cannot be written.
 int run_stress_command(const StressCli& cli);
 
 }  // namespace tp::host

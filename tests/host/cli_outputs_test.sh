@@ -128,15 +128,24 @@ refused "replay -o over its stream, through a link" "s-link.png is the stream s.
 # the file that was there, whole, and leaves no FILE.part: each writer encodes in memory and
 # renames a finished FILE.part over FILE (host/replace_file.hpp). OpenImageIO's PNG writer does
 # not report such a failure: the old tool wrote 2 KiB of PNG, lost the old image and exited 0.
-# kept NAME FILE STATUS ARGS...: exit STATUS, "FILE: cannot write" on stderr, FILE as before.
+# kept NAME FILE STATUS ARGS...: exit STATUS, "FILE: cannot write: File too large" on stderr, FILE
+# (or the file it links to) as before; then the same command without the limit replaces it, with
+# FILE's permissions, and leaves no FILE.part.
 kept() {
-  local name=$1 file=$2 want=$3 out status=0
+  local name=$1 file=$2 want=$3 out status=0 link=no
   shift 3
+  [ -L "$file" ] && link=yes
   echo old > "$file"
+  chmod 640 "$file"
   out=$(trap '' XFSZ; ulimit -f 2; "$tp" "$@" 2>&1 >/dev/null) || status=$?
-  if [ "$status" != "$want" ] || ! grep -qF -- "$file: cannot write" <<<"$out" ||
+  if [ "$status" != "$want" ] || ! grep -qF -- "$file: cannot write: File too large" <<<"$out" ||
      [ "$(cat "$file")" != old ] || [ -e "$file.part" ]; then
     echo "FAIL: $name: status $status, '$out', $file holds $(wc -c < "$file") bytes or $file.part left"
+    fail=1
+  elif "$tp" "$@" >/dev/null 2>&1; [ "$(head -c 3 "$file")" = old ] || [ -e "$file.part" ] ||
+       [ "$(stat -L -c %a "$file")" != 640 ] || { [ "$link" = yes ] && [ ! -L "$file" ]; }; then
+    echo "FAIL: $name: without the limit $file was not replaced, kept no 640, lost its link or" \
+         "$file.part was left"
     fail=1
   else
     echo "ok: $name: $(tail -n 1 <<<"$out")"
@@ -154,9 +163,15 @@ kept "compare --diff, a failed write" big.png 1 compare sub/g.png sub/f.png --di
 "$tp" record scene.json --size 400x400 -o sub/big.tpcmd >/dev/null
 kept "replay -o, a failed write" big.png 1 replay sub/big.tpcmd -o big.png
 mkdir images
-kept "stress --images, a failed write" images/ab-min.reference.png 1 \
+kept "stress --images, a failed write" images/ab-min.reference.png 3 \
   stress --cases ab-min --methods flat --images images
 kept "stress --json, a failed write" big.json 3 stress --cases ab-min --json big.json
+# Through a symbolic link: the file it names is kept, then replaced beside itself; the link stays.
+echo old > sub/real.png
+ln -s real.png sub/link.png
+kept "render through a link, a failed write" sub/link.png 1 \
+  render scene.json --size 400x400 -o sub/link.png
+[ -e sub/real.png.part ] && { echo "FAIL: render through a link left real.png.part"; fail=1; }
 rm -rf sub/* images
 
 # Good outputs: a new stream, a new difference image, both real files.
