@@ -49,8 +49,7 @@ inline std::filesystem::path link_target(const std::filesystem::path& path) {
   std::filesystem::path file = path;
   for (int hops = 0; std::filesystem::is_symlink(std::filesystem::symlink_status(file, e));
        ++hops) {
-    if (hops == 40)
-      throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(ELOOP));
+    if (hops == 40) cannot_write(path.string(), ELOOP);
     const std::filesystem::path next = std::filesystem::read_symlink(file, e);
     if (e) cannot_write(path.string(), e.value());
     file = next.is_absolute() ? next : file.parent_path() / next;
