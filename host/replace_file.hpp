@@ -1,7 +1,7 @@
 // Writing a whole output file, for every file the tools write (command streams, images, the stress
-// suite's JSON and bounds): the file holds all the new bytes or is as it was. A write that fails
-// part-way (a full disk, the file size limit) throws naming the file and the cause and leaves the
-// old file, not a file cut short.
+// suite's JSON and bounds): a regular file holds all the new bytes or is as it was. A write that
+// fails part-way (a full disk, the file size limit) throws naming the file and the cause and
+// leaves the old file, not a file cut short (replace_file says where this cannot hold).
 #pragma once
 
 #include <fcntl.h>
@@ -43,57 +43,88 @@ inline bool write_all(int fd, std::span<const std::byte> bytes) {
   throw std::runtime_error(path + ": cannot write: " + std::strerror(error));
 }
 
-// The file a chain of symbolic links ends at (it may not exist yet), or `path` itself.
-inline std::filesystem::path link_target(const std::filesystem::path& path) {
+// Where a chain of symbolic links ends (a file that may not exist yet), or `path` itself; and
+// whether the chain passes through /proc, whose links (/dev/stdout -> /proc/self/fd/1) name open
+// descriptors, not paths.
+struct LinkEnd {
+  std::filesystem::path file;
+  bool link = false, descriptor = false;
+};
+inline LinkEnd link_end(const std::filesystem::path& path) {
   std::error_code e;
-  std::filesystem::path file = path;
-  for (int hops = 0; std::filesystem::is_symlink(std::filesystem::symlink_status(file, e));
+  LinkEnd end{path};
+  for (int hops = 0; std::filesystem::is_symlink(std::filesystem::symlink_status(end.file, e));
        ++hops) {
     if (hops == 40) cannot_write(path.string(), ELOOP);
-    const std::filesystem::path next = std::filesystem::read_symlink(file, e);
+    const std::filesystem::path next = std::filesystem::read_symlink(end.file, e);
     if (e) cannot_write(path.string(), e.value());
-    file = next.is_absolute() ? next : file.parent_path() / next;
+    end.file = next.is_absolute() ? next : end.file.parent_path() / next;
+    end.link = true;
+    end.descriptor = end.descriptor || end.file.string().starts_with("/proc/");
   }
-  return file;
+  return end;
 }
 
-// In place, truncating: for what has no old contents to keep (a device, a pipe), and for a
-// writable file in a folder where no new file can be made.
-inline void write_in_place(const std::string& path, const std::string& file,
-                           std::span<const std::byte> bytes) {
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+// In place, truncating, the kernel following any link: for what has no old contents to keep (a
+// device, a pipe, an open descriptor, a new file at the end of a link) and for a writable file in
+// a folder where no new file can be made. `created`: the file this call makes, removed if the
+// write fails.
+inline void write_in_place(const std::string& path, std::span<const std::byte> bytes,
+                           const std::string& created = {}) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
   if (fd < 0) cannot_write(path, errno);
   const bool written = write_all(fd, bytes);
-  const int error = errno;
-  if (::close(fd) != 0 && written) cannot_write(path, errno);
-  if (!written) cannot_write(path, error);
+  int error = errno;
+  const bool closed = ::close(fd) == 0;
+  if (written && closed) return;
+  if (written) error = errno;
+  if (!created.empty()) ::unlink(created.c_str());
+  cannot_write(path, error);
+}
+
+// A new file's owner, group and permissions as the old file's, as far as the writer may: the
+// owner only for root; never set-user-ID or set-group-ID (images and streams are no programs).
+inline bool take_mode(int fd, const struct stat& old) {
+  if (::fchown(fd, old.st_uid, old.st_gid) != 0)
+    (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
+  return ::fchmod(fd, old.st_mode & 01777) == 0;
 }
 
 }  // namespace detail
 
-// Writes `bytes` as the file `path`, or throws std::runtime_error "PATH: cannot write: CAUSE" and
-// leaves what was there. A new or regular file is written beside it, as FILE.part with the old
-// file's permissions, and renamed over it; a symbolic link is followed, and the file it names
-// replaced so (the link stays a link). A device or a pipe is written as it is. FILE.part is created
-// anew (O_EXCL | O_NOFOLLOW): one that is there, left by an interrupted write or a link that would
-// send the bytes elsewhere, is refused and left alone. A file the user may not write is refused,
-// as opening it would be; a writable file in a folder where no new file can be made (so no
-// FILE.part) is written in place, without the guarantee.
+// Writes `bytes` as the file `path`, or throws std::runtime_error "PATH: cannot write: CAUSE".
+// A regular file, or a new one, is replaced whole or not at all: the bytes go to FILE.part, made
+// anew (O_EXCL | O_NOFOLLOW: one that is there, left by an interrupted write or a link that would
+// send the bytes elsewhere, is refused and left alone) with the old file's owner, group and
+// permissions as far as the writer may set them, and FILE.part is renamed over FILE once all of
+// them are written; a failed write removes it and leaves FILE as it was. A symbolic link to a
+// regular file is followed by the kernel first (so its protections of links in shared folders
+// hold), and the file it names is replaced so; the link stays a link. Written in place instead,
+// without the guarantee: a device, a pipe or an open descriptor (/dev/stdout), a new file at the
+// end of a link, and a writable file in a folder where no new file can be made. A file the user
+// may not write is refused, as opening it would be.
 inline void replace_file(const std::string& path, std::span<const std::byte> bytes) {
-  const std::filesystem::path target = detail::link_target(path);
-  const std::string file = target.string();
   struct stat old {};
-  const bool exists = ::stat(file.c_str(), &old) == 0;
-  if (exists && !S_ISREG(old.st_mode)) return detail::write_in_place(path, file, bytes);
+  const bool exists = ::stat(path.c_str(), &old) == 0;  // through links, as the kernel follows them
+  if (!exists && errno != ENOENT) detail::cannot_write(path, errno);
+  const detail::LinkEnd end = detail::link_end(path);
+  const std::string file = end.file.string();
+  if (end.descriptor || (exists && (!S_ISREG(old.st_mode) || old.st_nlink == 0)))
+    return detail::write_in_place(path, bytes);
+  if (!exists && end.link) return detail::write_in_place(path, bytes, file);
+  struct stat at {};
+  if (exists &&
+      (::stat(file.c_str(), &at) != 0 || at.st_dev != old.st_dev || at.st_ino != old.st_ino))
+    return detail::write_in_place(path, bytes);  // not where the links seemed to lead: as it is
   if (exists && ::access(file.c_str(), W_OK) != 0) detail::cannot_write(path, errno);
   const std::string part = file + ".part";
   const int fd = ::open(part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666);
   if (fd < 0 && errno == EEXIST)
     throw std::runtime_error(path + ": cannot write (" + part +
                              " exists: left by an interrupted write?)");
-  if (fd < 0 && errno == EACCES && exists) return detail::write_in_place(path, file, bytes);
+  if (fd < 0 && errno == EACCES && exists) return detail::write_in_place(path, bytes);
   if (fd < 0) detail::cannot_write(path, errno);
-  const bool moded = !exists || ::fchmod(fd, old.st_mode & 07777) == 0;
+  const bool moded = !exists || detail::take_mode(fd, old);
   const bool written = moded && detail::write_all(fd, bytes);
   int error = errno;
   const bool closed = ::close(fd) == 0;

@@ -124,27 +124,27 @@ rm -rf "$work.before" && cp -a "$work" "$work.before"
 refused "replay -o over its stream, through a link" "s-link.png is the stream s.tpcmd" \
   replay s.tpcmd -o s-link.png
 
-# A write that fails part-way (here the file size limit, 2 KiB: every image below is larger) keeps
+# A write that fails part-way (here the file size limit, 2 KiB: every file below is larger) keeps
 # the file that was there, whole, and leaves no FILE.part: each writer encodes in memory and
 # renames a finished FILE.part over FILE (host/replace_file.hpp). OpenImageIO's PNG writer does
 # not report such a failure: the old tool wrote 2 KiB of PNG, lost the old image and exited 0.
 # kept NAME FILE STATUS ARGS...: exit STATUS, "FILE: cannot write: File too large" on stderr, FILE
 # (or the file it links to) as before; then the same command without the limit replaces it, with
-# FILE's permissions, and leaves no FILE.part.
+# FILE's permissions (751: no umask makes that of a new file's 666), and leaves no FILE.part.
 kept() {
   local name=$1 file=$2 want=$3 out status=0 link=no
   shift 3
   [ -L "$file" ] && link=yes
   echo old > "$file"
-  chmod 640 "$file"
+  chmod 751 "$file"
   out=$(trap '' XFSZ; ulimit -f 2; "$tp" "$@" 2>&1 >/dev/null) || status=$?
   if [ "$status" != "$want" ] || ! grep -qF -- "$file: cannot write: File too large" <<<"$out" ||
      [ "$(cat "$file")" != old ] || [ -e "$file.part" ]; then
     echo "FAIL: $name: status $status, '$out', $file holds $(wc -c < "$file") bytes or $file.part left"
     fail=1
   elif "$tp" "$@" >/dev/null 2>&1; [ "$(head -c 3 "$file")" = old ] || [ -e "$file.part" ] ||
-       [ "$(stat -L -c %a "$file")" != 640 ] || { [ "$link" = yes ] && [ ! -L "$file" ]; }; then
-    echo "FAIL: $name: without the limit $file was not replaced, kept no 640, lost its link or" \
+       [ "$(stat -L -c %a "$file")" != 751 ] || { [ "$link" = yes ] && [ ! -L "$file" ]; }; then
+    echo "FAIL: $name: without the limit $file was not replaced, kept no 751, lost its link or" \
          "$file.part was left"
     fail=1
   else
@@ -152,31 +152,48 @@ kept() {
   fi
   rm -f "$file"
 }
-kept "render, a failed write" big.png 1 render scene.json --size 400x400 -o big.png
-kept "reference, a failed write" big.png 1 reference scene.json --size 400x400 -o big.png
+kept "render, a failed write" big.png 1 render scene.json --size 160x120 -o big.png
+kept "reference, a failed write" big.png 1 reference scene.json --size 160x120 -o big.png
 ln -s /dev/null sub/null.png  # the PNG through a link to a device, beyond the limit's reach
 kept "reference --exr, a failed write" big.exr 1 \
-  reference scene.json --size 400x400 -o sub/null.png --exr big.exr
-"$tp" render scene.json --method gouraud --size 400x400 -o sub/g.png >/dev/null
-"$tp" render scene.json --method flat --size 400x400 -o sub/f.png >/dev/null
+  reference scene.json --size 160x120 -o sub/null.png --exr big.exr
+"$tp" render scene.json --method phong --size 160x120 -o sub/g.png >/dev/null
+"$tp" render scene.json --method flat --size 160x120 -o sub/f.png >/dev/null
 kept "compare --diff, a failed write" big.png 1 compare sub/g.png sub/f.png --diff big.png
-"$tp" record scene.json --size 400x400 -o sub/big.tpcmd >/dev/null
+"$tp" record scene.json --size 160x120 -o sub/big.tpcmd >/dev/null
 kept "replay -o, a failed write" big.png 1 replay sub/big.tpcmd -o big.png
 mkdir images
 kept "stress --images, a failed write" images/ab-min.reference.png 3 \
   stress --cases ab-min --methods flat --images images
-kept "stress --json, a failed write" big.json 3 stress --cases ab-min --json big.json
+kept "stress --json, a failed write" big.json 3 \
+  stress --cases ab-min --methods flat,gouraud,phong,duff,brown --json big.json
 # Through a symbolic link: the file it names is kept, then replaced beside itself; the link stays.
 echo old > sub/real.png
 ln -s real.png sub/link.png
 kept "render through a link, a failed write" sub/link.png 1 \
-  render scene.json --size 400x400 -o sub/link.png
+  render scene.json --size 160x120 -o sub/link.png
 [ -e sub/real.png.part ] && { echo "FAIL: render through a link left real.png.part"; fail=1; }
+# A new file at the end of a link: a failed write leaves no file there; a good one makes it.
+ln -s new.png sub/dangling.png
+status=0
+out=$(trap '' XFSZ; ulimit -f 2; "$tp" render scene.json --size 160x120 -o sub/dangling.png 2>&1) ||
+  status=$?
+if [ "$status" != 1 ] || [ -e sub/new.png ] || [ -e sub/new.png.part ] || [ ! -L sub/dangling.png ]; then
+  echo "FAIL: a failed write through a dangling link: status $status, or a file left"; fail=1
+elif ! "$tp" render scene.json --size 160x120 -o sub/dangling.png >/dev/null || [ ! -s sub/new.png ]; then
+  echo "FAIL: a write through a dangling link made no file"; fail=1
+else
+  echo "ok: a new file at the end of a link: none after a failed write, made by a good one"
+fi
 rm -rf sub/* images
 
 # Good outputs: a new stream, a new difference image, both real files.
 "$tp" record scene.json --size 64x48 -o new.tpcmd >/dev/null && [ -s new.tpcmd ] ||
   { echo "FAIL: record to a new file"; fail=1; }
+# /dev/stdout names a descriptor (here a pipe), written as it is: the stream, then record's line.
+"$tp" record scene.json --size 64x48 -o /dev/stdout | cat > piped.out
+cmp -s -n "$(stat -c %s new.tpcmd)" piped.out new.tpcmd && grep -aq "words -> /dev/stdout" piped.out ||
+  { echo "FAIL: record -o /dev/stdout"; fail=1; }
 "$tp" record mesh.json scene.json --size 64x48 --dir dir >/dev/null &&
   [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
 "$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||

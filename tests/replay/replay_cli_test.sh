@@ -5,7 +5,7 @@
 # replay's memory limit (unless an earlier command fails first) and a file over the limit of a
 # command file; a good stream replays and hashes. And `tinyphong record`'s outputs: two scenes
 # of one name are refused, a failed write keeps the old stream, an existing PATH.part is refused
-# and left alone, a symbolic link is followed (the file it names replaced, the link kept).
+# and left alone, a symbolic link stays a link and the file it names gets the stream.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -118,7 +118,7 @@ ln -s "$work/target.tpcmd" "$work/link.tpcmd"
 if [ ! -L "$work/link.tpcmd" ] || ! cmp -s "$work/good.tpcmd" "$work/target.tpcmd"; then
   echo "FAIL: a symbolic link was replaced, or its target does not hold the stream"; fail=1
 else
-  echo "ok: a symbolic link is followed, the file it names replaced"
+  echo "ok: through a symbolic link: the link kept, the file it names holds the stream"
 fi
 
 [ $fail -eq 0 ] && echo "replay CLI errors: all as expected"
