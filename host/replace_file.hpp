@@ -19,6 +19,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "host/file_identity.hpp"
+
 namespace tp::host {
 
 namespace detail {
@@ -112,9 +114,7 @@ inline void replace_file(const std::string& path, std::span<const std::byte> byt
   if (end.descriptor || (exists && (!S_ISREG(old.st_mode) || old.st_nlink == 0)))
     return detail::write_in_place(path, bytes);
   if (!exists && end.link) return detail::write_in_place(path, bytes, file);
-  struct stat at {};
-  if (exists &&
-      (::stat(file.c_str(), &at) != 0 || at.st_dev != old.st_dev || at.st_ino != old.st_ino))
+  if (exists && !same_file(path, file))
     return detail::write_in_place(path, bytes);  // not where the links seemed to lead: as it is
   if (exists && ::access(file.c_str(), W_OK) != 0) detail::cannot_write(path, errno);
   const std::string part = file + ".part";
