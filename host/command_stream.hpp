@@ -112,7 +112,7 @@ inline constexpr std::size_t kMaxCommandFileBytes = std::size_t{64} << 20;
 std::vector<std::uint32_t> read_command_file(const std::string& path);
 // Throws std::runtime_error naming the file if it cannot be written. A regular file is replaced
 // whole or not at all, by host/replace_file.hpp's replace_file (which says where that cannot
-// hold): written to PATH.part, created anew, then renamed over PATH.
+// hold): written to a file with no name yet, then named PATH.part and renamed over PATH.
 void write_command_file(const std::string& path, std::span<const std::uint32_t> words);
 
 // FNV-1a 64 of the framebuffer's colour bytes, row by row (no stride padding): the hash the

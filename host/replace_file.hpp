@@ -92,19 +92,61 @@ inline bool take_mode(int fd, const struct stat& old) {
   return ::fchmod(fd, old.st_mode & 01777) == 0;
 }
 
+[[noreturn]] inline void stale_part(const std::string& path, const std::string& part) {
+  throw std::runtime_error(path + ": cannot write (" + part +
+                           " exists: left by an interrupted write?)");
+}
+
+// The bytes to a file without a name in `file`'s folder (O_TMPFILE), which is then linked as
+// `part` and renamed over `file`: a run killed before the link leaves nothing behind. false, with
+// nothing written anywhere, where the file system has no unnamed files or /proc is not there to
+// link one by: the caller then makes `part` by its name. `old`: the file there now, if any.
+inline bool replace_unnamed(const std::string& path, const std::string& file,
+                            const std::string& part, std::span<const std::byte> bytes,
+                            const struct stat* old) {
+  std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (folder.empty()) folder = ".";
+  const int fd = ::open(folder.c_str(), O_TMPFILE | O_WRONLY, 0666);
+  if (fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) return false;
+  if (fd < 0 && errno == EACCES && old != nullptr) {
+    write_in_place(path, bytes);  // a writable file in a folder where no new file can be made
+    return true;
+  }
+  if (fd < 0) cannot_write(path, errno);
+  const bool written = (old == nullptr || take_mode(fd, *old)) && write_all(fd, bytes);
+  int error = errno;
+  const std::string self = "/proc/self/fd/" + std::to_string(fd);
+  const bool linked =
+      written && ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, part.c_str(), AT_SYMLINK_FOLLOW) == 0;
+  if (written && !linked) error = errno;
+  const bool closed = ::close(fd) == 0;
+  if (linked && !closed) error = errno;
+  if (linked && closed && std::rename(part.c_str(), file.c_str()) == 0) return true;
+  if (linked && closed) error = errno;
+  if (linked) ::unlink(part.c_str());
+  if (written && !linked && error == EEXIST) stale_part(path, part);
+  std::error_code e;
+  if (written && !linked && error == ENOENT && !std::filesystem::exists("/proc/self/fd", e))
+    return false;
+  cannot_write(path, error);
+}
+
 }  // namespace detail
 
 // Writes `bytes` as the file `path`, or throws std::runtime_error "PATH: cannot write: CAUSE".
-// A regular file, or a new one, is replaced whole or not at all: the bytes go to FILE.part, made
-// anew (O_EXCL | O_NOFOLLOW: one that is there, left by an interrupted write or a link that would
-// send the bytes elsewhere, is refused and left alone) with the old file's owner, group and
-// permissions as far as the writer may set them, and FILE.part is renamed over FILE once all of
-// them are written; a failed write removes it and leaves FILE as it was. A symbolic link to a
-// regular file is followed by the kernel first (so its protections of links in shared folders
-// hold), and the file it names is replaced so; the link stays a link. Written in place instead,
-// without the guarantee: a device, a pipe or an open descriptor (/dev/stdout), a new file at the
-// end of a link, and a writable file in a folder where no new file can be made. A file the user
-// may not write is refused, as opening it would be.
+// A regular file, or a new one, is replaced whole or not at all. The bytes go to a file beside it
+// that has no name yet (O_TMPFILE), with the old file's owner, group and permissions as far as the
+// writer may set them; once all of them are written it is linked as FILE.part and renamed over
+// FILE. A failed write leaves FILE as it was and nothing beside it, and so does a run killed while
+// it writes. A FILE.part that is there (left by an older tool or by a run killed between the link
+// and the rename, or a link that would send the bytes elsewhere) is refused and left alone. Where
+// the file system has no unnamed files, FILE.part is made by its name (O_EXCL | O_NOFOLLOW) and
+// written the same way, but a killed run leaves it. A symbolic link to a regular file is followed
+// by the kernel first (so its protections of links in shared folders hold), and the file it names
+// is replaced so; the link stays a link. Written in place instead, without the guarantee: a
+// device, a pipe or an open descriptor (/dev/stdout), a new file at the end of a link, and a
+// writable file in a folder where no new file can be made. A file the user may not write is
+// refused, as opening it would be.
 inline void replace_file(const std::string& path, std::span<const std::byte> bytes) {
   struct stat old {};
   const bool exists = ::stat(path.c_str(), &old) == 0;  // through links, as the kernel follows them
@@ -118,10 +160,9 @@ inline void replace_file(const std::string& path, std::span<const std::byte> byt
     return detail::write_in_place(path, bytes);  // not where the links seemed to lead: as it is
   if (exists && ::access(file.c_str(), W_OK) != 0) detail::cannot_write(path, errno);
   const std::string part = file + ".part";
+  if (detail::replace_unnamed(path, file, part, bytes, exists ? &old : nullptr)) return;
   const int fd = ::open(part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666);
-  if (fd < 0 && errno == EEXIST)
-    throw std::runtime_error(path + ": cannot write (" + part +
-                             " exists: left by an interrupted write?)");
+  if (fd < 0 && errno == EEXIST) detail::stale_part(path, part);
   if (fd < 0 && errno == EACCES && exists) return detail::write_in_place(path, bytes);
   if (fd < 0) detail::cannot_write(path, errno);
   const bool moded = !exists || detail::take_mode(fd, old);

@@ -167,6 +167,29 @@ kept "stress --images, a failed write" images/ab-min.reference.png 3 \
   stress --cases ab-min --methods flat --images images
 kept "stress --json, a failed write" big.json 3 \
   stress --cases ab-min --methods flat,gouraud,phong,duff,brown --json big.json
+# A run killed while it writes (here by the file size limit's signal, as Ctrl-C would) leaves the
+# old file and nothing beside it, so the next run is not refused for a FILE.part: the bytes go to a
+# file with no name (O_TMPFILE) until all of them are written. A file system without unnamed files
+# falls back to a named FILE.part, which a killed run leaves: then the check says it did not run.
+if python3 -c 'import os, sys; os.close(os.open(sys.argv[1], os.O_TMPFILE | os.O_WRONLY))' . 2>/dev/null; then
+  echo old > big.png
+  # (the shell's own "File size limit exceeded" line to /dev/null as well)
+  status=$( (ulimit -f 2; exec "$tp" render scene.json --size 160x120 -o big.png) >/dev/null 2>&1
+           echo $?) 2>/dev/null
+  left=$(ls -A | grep '^big\.png.' | tr '\n' ' ' || true)
+  if [ "$status" != 153 ] || [ "$(cat big.png)" != old ] || [ -n "$left" ]; then
+    echo "FAIL: a run killed while it writes: status $status (153: SIGXFSZ), big.png holds" \
+         "$(wc -c < big.png) bytes, left: '$left'"
+    fail=1
+  elif ! "$tp" render scene.json --size 160x120 -o big.png >/dev/null 2>&1 || [ "$(head -c 3 big.png)" = old ]; then
+    echo "FAIL: the run after a killed one did not replace big.png"; fail=1
+  else
+    echo "ok: a run killed while it writes leaves the old file and nothing beside it"
+  fi
+  rm -f big.png
+else
+  echo "not run: this file system makes no unnamed files (O_TMPFILE): a killed run leaves FILE.part"
+fi
 # Through a symbolic link: the file it names is kept, then replaced beside itself; the link stays.
 echo old > sub/real.png
 ln -s real.png sub/link.png
