@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -281,6 +283,21 @@ void DeviceRenderer::set_scene(const Scene& scene) {
   loaded_ = true;
 }
 
+// The scene is checked unrotated (set_scene); a turn can take a vertex out of the device's range
+// (a draw's only refusal once its indices are in range), which the device finds per frame.
+void DeviceRenderer::refused_frame(const StreamError& e, double rotation) const {
+  char degrees[32];
+  std::snprintf(degrees, sizeof degrees, "%.6g", rotation * 180.0 / std::numbers::pi);
+  std::string why =
+      std::string("the device refused the frame at rotation ") + degrees + " degrees: " + e.what();
+  if (e.opcode == static_cast<std::uint32_t>(fw::Opcode::kDraw) &&
+      e.error == fw::Error::kOutOfRange)
+    why +=
+        " (at this rotation a vertex's eye-space or clip-space coordinates leave the device's"
+        " Q15.16 range, |x| < 32768: a smaller model, or a camera nearer its size, fits)";
+  reject(scene_, "", why);
+}
+
 fw::Mat4 DeviceRenderer::modelview_for(const Scene& scene, const MeshRange& mesh,
                                        double rotation) const {
   ConversionReport report;
@@ -318,7 +335,7 @@ DeviceFrame DeviceRenderer::render(double model_rotation_radians) {
   try {
     run_stream(device_, frame_commands(model_rotation_radians));
   } catch (const StreamError& e) {
-    throw std::runtime_error(std::string("device: ") + e.what());
+    refused_frame(e, model_rotation_radians);
   }
   const auto stop = std::chrono::steady_clock::now();
   DeviceFrame f = read_frame(device_);

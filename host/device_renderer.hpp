@@ -22,6 +22,8 @@
 
 namespace tp::host {
 
+class StreamError;
+
 using CounterSnapshot = std::vector<std::pair<std::string, std::uint64_t>>;
 
 // One frame rendered by the device.
@@ -72,7 +74,9 @@ class DeviceRenderer {
   const Scene& scene() const { return scene_; }
 
   // Renders with the scene's objects rotated by `model_rotation_radians` about the world y axis
-  // (the lights stay put, so the highlights move: the server's animation).
+  // (the lights stay put, so the highlights move: the server's animation). A frame the device
+  // refuses (set_scene checks the scene unturned) throws SceneError naming the scene and the
+  // rotation.
   DeviceFrame render(double model_rotation_radians = 0.0);
   // The double-precision reference of the same frame (host/reference.hpp).
   ReferenceFrame render_reference(double model_rotation_radians = 0.0,
@@ -81,7 +85,9 @@ class DeviceRenderer {
   // The command words of one frame as a fresh device needs them: the scene's setup (viewport,
   // capacity, projection, eye, material, lights, method, budget, culling, uploads) then the frame's
   // (clear, model-view and draw per mesh, end_frame). set_scene and render run exactly these
-  // words through Device::execute, so a recorded stream cannot drift from a render.
+  // words through Device::execute, so a recorded stream cannot drift from a render. Whether the
+  // device takes the frame (a turn can take a vertex out of its range) is render's to say: the
+  // CLI renders it before it records.
   std::vector<std::uint32_t> record(double model_rotation_radians = 0.0) const;
 
   const fw::Device& device() const { return device_; }
@@ -98,6 +104,7 @@ class DeviceRenderer {
   std::vector<std::uint32_t> frame_commands(double model_rotation_radians) const;
   void apply(const Scene& scene, const std::vector<std::uint32_t>& setup);
   fw::Mat4 modelview_for(const Scene& scene, const MeshRange& mesh, double rotation) const;
+  [[noreturn]] void refused_frame(const StreamError& e, double rotation) const;
 
   std::vector<std::byte> memory_;
   fw::Device device_;

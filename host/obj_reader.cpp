@@ -30,6 +30,23 @@ std::string at_line(const std::string& file, std::size_t line) {
   return file + ":" + std::to_string(line);
 }
 
+// At most the first 32 bytes of a token, quoted, for an error: control bytes as \xNN, so that a
+// NUL does not end the message where it is printed and a CR or ESC does not garble a terminal.
+std::string quoted(std::string_view token) {
+  std::string out = "'";
+  for (const char c : token.substr(0, 32)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
 // tinyobjloader separates words by spaces and tabs only; so does the scan, so that both see the
 // same records ("\fv 1 2 3" is none) and the same numbers ("1\v2" is one word, not a number).
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
@@ -64,8 +81,8 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     // millions of numbers).
     const auto named = [&] {
       return std::string(record) + " " +
-             (k < 4 ? std::string(kFields[k]) : "value " + std::to_string(k + 1)) + " '" +
-             std::string(token.substr(0, 32)) + "'";
+             (k < 4 ? std::string(kFields[k]) : "value " + std::to_string(k + 1)) + " " +
+             quoted(token);
     };
     double value = 0;
     // from_chars takes no '+'; one sign at most ("+-1" is no number).
@@ -82,8 +99,8 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     if (ec != std::errc() || ptr != end) refuse(where, named() + " is not a number");
     if (!std::isfinite(value)) refuse(where, named() + " is not a finite number");
     if (std::abs(value) > std::numeric_limits<float>::max())
-      refuse(where, std::string(record) + " '" + std::string(token.substr(0, 32)) +
-                        "' is beyond the single-precision range OBJ numbers are read in");
+      refuse(where, std::string(record) + " " + quoted(token) +
+                        " is beyond the single-precision range OBJ numbers are read in");
     if (k < 3) read.values[static_cast<std::size_t>(read.count++)] = value;
   }
 }
@@ -111,9 +128,7 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
     const std::size_t slash = corner.find('/', start);
     const std::string_view field = corner.substr(
         start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
-    if (kind > 2)
-      refuse(where,
-             "face corner '" + std::string(corner.substr(0, 32)) + "' has more than three indices");
+    if (kind > 2) refuse(where, "face corner " + quoted(corner) + " has more than three indices");
     const bool may_be_empty = kind == 1 && slash != std::string_view::npos;  // "v//vn"
     if (!(field.empty() && may_be_empty)) {
       long long index = 0;
@@ -123,8 +138,7 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
           std::from_chars(field.data() + (plus ? 1 : 0), field.data() + field.size(), index);
       // "face corner '…': vertex index", built only for an error.
       const auto named = [&] {
-        return "face corner '" + std::string(corner.substr(0, 32)) + "': " + kIndexKinds[kind] +
-               " index";
+        return "face corner " + quoted(corner) + ": " + kIndexKinds[kind] + " index";
       };
       if (ec != std::errc() || ptr != field.data() + field.size())
         refuse(where, named() + " is not an integer");
@@ -172,6 +186,10 @@ bool check_line(std::string_view line, std::size_t line_number, const std::strin
   if (record == "v" || record == "vn" || record == "vt") {
     Record read = check_numbers(record, line, pos, where);
     read.line = line_number;
+    // tinyobjloader reads a missing coordinate as 0: "v 1" would be the point (1, 0, 0).
+    if (record != "vt" && read.count < 3)
+      refuse(where, std::string(record) + " record with " + std::to_string(read.count) +
+                        (read.count == 1 ? " number" : " numbers") + ", not x, y and z");
     const std::size_t kind = record == "v" ? 0 : record == "vt" ? 1 : 2;
     ++tally.defined[kind];
     if (kind == 0) tally.vertices.push_back(read);
@@ -294,6 +312,9 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std:
 }  // namespace
 
 Mesh parse_obj(std::string_view text, const std::string& file) {
+  // A UTF-8 byte order mark, which some editors write, is no part of the first record: left in,
+  // it made the first "v" line no record, and every index after it named the next vertex.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   Tally tally;
   const std::string for_parser = scan_lines(text, file, tally);
   tinyobj::ObjReaderConfig cfg;

@@ -16,7 +16,7 @@ namespace tp::host {
 using nlohmann::json;
 
 SceneError::SceneError(std::string file, int line, std::string path, std::string problem)
-    : std::runtime_error(file + ":" + std::to_string(line) + ": " +
+    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
                          (path.empty() ? std::string() : path + ": ") + problem),
       file_(std::move(file)),
       line_(line),

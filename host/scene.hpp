@@ -19,7 +19,8 @@
 namespace tp::host {
 
 // Every problem found in a scene file (or in a mesh it names): which file, which line (0 when
-// unknown), which JSON pointer (e.g. "/lights/2/position"; empty for whole-file problems), what.
+// unknown, and then not in the message: "FILE: POINTER: PROBLEM"), which JSON pointer (e.g.
+// "/lights/2/position"; empty for whole-file problems), what.
 class SceneError : public std::runtime_error {
  public:
   SceneError(std::string file, int line, std::string path, std::string problem);

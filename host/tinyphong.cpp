@@ -175,7 +175,8 @@ int run_reference(const SceneOptions& o, const std::string& out, const std::stri
   }
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
-  device.set_scene(scene);  // the same checks as a device render: one definition of "valid"
+  device.set_scene(scene);  // the same checks as a device render: one definition of "valid",
+  device.render(radians(o.rotate_deg));  // the frame's included (a turn can leave the range)
   const Interpolation interp = angular ? Interpolation::Angular : Interpolation::Phong;
   const ReferenceFrame ref = device.render_reference(radians(o.rotate_deg), interp);
   write_png(out, ref.image());
@@ -228,6 +229,10 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
               << b << " is " << ib.width << "x" << ib.height << "\n";
     return 2;
   }
+  if (row && (*row < 0 || *row >= ia.height)) {  // before anything is printed or written
+    std::cerr << "tinyphong compare: --row " << *row << " outside 0.." << ia.height - 1 << "\n";
+    return 2;
+  }
   const Mask ma = mask_from_background(ia), mb = mask_from_background(ib);
   print_comparison(compare(ia, ma, ib, mb));
   if (worst > 0) print_worst(ia, ma, ib, mb, worst);
@@ -236,10 +241,6 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
     std::cout << "difference image (Vlasic eq. 6.2) -> " << diff << "\n";
   }
   if (row) {
-    if (*row < 0 || *row >= ia.height) {
-      std::cerr << "tinyphong compare: --row " << *row << " outside 0.." << ia.height - 1 << "\n";
-      return 2;
-    }
     const auto ca = scanline_curve(ia, ma, *row), cb = scanline_curve(ib, mb, *row);
     std::cout << "x,first,second  (Vlasic eq. 6.3, row " << *row << ")\n";
     for (std::size_t x = 0; x < ca.size(); ++x) {
@@ -252,11 +253,12 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
 }
 
 // The command words the driver sends for one frame of the scene (the device's checks of the
-// scene, as a render's, throw here).
+// scene and of the frame, as a render's, throw here: no stream that replay would refuse).
 std::vector<std::uint32_t> record_words(const Scene& scene, double rotate_deg) {
   const Capacity cap = capacity_for(scene);
   DeviceRenderer device(scene.width, scene.height, cap.vertices, cap.indices);
   device.set_scene(scene);
+  device.render(radians(rotate_deg));
   return device.record(radians(rotate_deg));
 }
 

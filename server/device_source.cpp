@@ -1,11 +1,14 @@
 #include "server/device_source.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "firmware/types.hpp"
 #include "host/reference.hpp"
+#include "host/scene.hpp"
 
 namespace tp::server {
 
@@ -32,6 +35,16 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
   s.width = sc.width;
   s.height = sc.height;
   return s;
+}
+
+// What a client is told of a problem: a scene's (or its mesh's) file by its name alone, not where
+// the server keeps it, then the line, the JSON pointer and the problem.
+std::string client_text(const std::exception& e) {
+  const auto* scene = dynamic_cast<const host::SceneError*>(&e);
+  if (scene == nullptr) return e.what();
+  return std::filesystem::path(scene->file()).filename().string() +
+         (scene->line() > 0 ? ":" + std::to_string(scene->line()) : std::string()) + ": " +
+         (scene->path().empty() ? std::string() : scene->path() + ": ") + scene->problem();
 }
 
 host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
@@ -65,6 +78,9 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
 DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width,
                            int height, const std::string& method)
     : dir_(std::move(scenes_dir)) {
+  if (std::error_code ec; !std::filesystem::is_directory(dir_, ec))
+    throw std::runtime_error("scenes folder " + dir_.string() + ": " +
+                             (ec ? ec.message() : std::string("not a folder")));
   for (const auto& e : std::filesystem::directory_iterator(dir_))
     if (e.is_regular_file() && e.path().extension() == ".json")
       scene_names_.push_back(e.path().stem().string());
@@ -96,7 +112,7 @@ Result DeviceSource::install(host::Scene sc, const std::string& name, bool specu
     host::method_from_name(shown.method);  // names the valid choices if not one
     renderer_.set_scene(shown);            // on failure the device keeps the previous scene
   } catch (const std::exception& e) {
-    return Result::failure(e.what());
+    return Result::failure(client_text(e));
   }
   settings_ = to_settings(sc, name);
   settings_.specular_only = specular_only;
@@ -121,12 +137,17 @@ Result DeviceSource::load_scene(const std::string& name) {
     sc.budget = settings_.budget;
     return install(std::move(sc), name, settings_.specular_only);
   } catch (const std::exception& e) {
-    return Result::failure(e.what());
+    return Result::failure(client_text(e));
   }
 }
 
 RenderedFrame DeviceSource::render(double rotation) {
-  host::DeviceFrame d = renderer_.render(rotation);
+  host::DeviceFrame d;
+  try {
+    d = renderer_.render(rotation);
+  } catch (const host::SceneError& e) {  // a frame the device refuses (host::DeviceRenderer)
+    throw std::runtime_error(client_text(e));
+  }
   RenderedFrame f;
   f.image.width = d.width;
   f.image.height = d.height;

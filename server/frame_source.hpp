@@ -63,6 +63,7 @@ class FrameSource {
   virtual Result load_scene(const std::string& name) = 0;
   virtual std::vector<MethodEntry> methods() const = 0;
   virtual std::vector<std::string> scenes() const = 0;
+  // Throws std::runtime_error, with what a client may be told, for a frame the device refuses.
   virtual RenderedFrame render(double rotation_radians) = 0;
   // A closure computing the double reference of the current scene at that rotation, safe to
   // run on another thread while the render loop keeps rendering.

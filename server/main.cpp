@@ -2,6 +2,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #ifdef __GLIBC__
@@ -28,6 +30,22 @@ void keep_large_blocks_out_of_the_heaps() {
 #endif
 }
 
+// A number of seconds or frames per second within [lo, hi]. CLI::Range let NaN through (every
+// comparison with it is false), which then became a duration: undefined behaviour, an unpaced
+// loop for --max-fps and every client cut off at once for --deadline.
+CLI::Validator finite_within(double lo, double hi) {
+  std::ostringstream range;
+  range << "[" << lo << " - " << hi << "]";
+  return CLI::Validator(
+      [lo, hi, text = range.str()](std::string& value) {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(value, v) || !(v >= lo && v <= hi))
+          return "a number in " + text + ", got '" + value + "'";
+        return std::string();
+      },
+      "FLOAT in " + range.str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,7 +67,9 @@ int main(int argc, char** argv) {
   app.add_option(
       "--allow-host", opt.allow_hosts,
       "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
-  app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")->capture_default_str();
+  app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")
+      ->check(CLI::Range(0, 65535))  // (beyond, CLI11 said "At Most 1 required but received 2")
+      ->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
   app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")
       ->capture_default_str();
@@ -63,16 +83,21 @@ int main(int argc, char** argv) {
   app.add_option("--height", height, "initial height (default: the scene's)")
       ->check(CLI::Range(16, 2048));
   app.add_option("--max-fps", max_fps, "render-loop pacing cap")
-      ->check(CLI::Range(1.0, 1000.0))
+      ->check(finite_within(1.0, 1000.0))
       ->capture_default_str();
   app.add_option("--deadline", deadline_s,
                  "seconds a client may leave a write or a frame unacknowledged")
-      ->check(CLI::Range(0.2, 600.0))
+      ->check(finite_within(0.2, 600.0))
       ->capture_default_str();
   app.add_option("--io-threads", opt.io_threads, "I/O threads")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes (104 to 114) for a bad option, as the tinyphong CLI: 2; 0 for --help.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   opt.loop.max_fps = max_fps;
   opt.limits.deadline = std::chrono::milliseconds(static_cast<long>(deadline_s * 1000));
 

@@ -211,10 +211,14 @@ void RenderLoop::compare_step() {
   s.method = c.methods[c.rows.size()];
   CompareRow row{s.method, {}, 0, {}};
   if (Result r = src_->apply(s); r.ok()) {
-    for (int k = 0; k < kCompareRenders; ++k) {
-      RenderedFrame f = src_->render(c.rotation);
-      if (k == 0 || f.render_ms < row.ms) row.ms = f.render_ms;
-      if (k == 0) row.error = compare_images(f.image, *c.reference);
+    try {
+      for (int k = 0; k < kCompareRenders; ++k) {
+        RenderedFrame f = src_->render(c.rotation);
+        if (k == 0 || f.render_ms < row.ms) row.ms = f.render_ms;
+        if (k == 0) row.error = compare_images(f.image, *c.reference);
+      }
+    } catch (const std::exception& e) {  // the device refused the frame (render_and_publish)
+      row.fault = e.what();
     }
   } else {
     row.fault = r.message();
@@ -266,7 +270,17 @@ void RenderLoop::publish_comparison() {
 }
 
 void RenderLoop::render_and_publish(double rotation) {
-  RenderedFrame f = src_->render(rotation);
+  RenderedFrame f;
+  try {
+    f = src_->render(rotation);
+  } catch (const std::exception& e) {
+    // The device refused this frame: a scene is checked unturned, and a turn can take a vertex
+    // out of the device's range. The clients keep the last frame and the stats say why; the
+    // loop goes on (the next rotation may fit, and any control message still applies).
+    std::lock_guard lk(m_);
+    refused_ = e.what();
+    return;
+  }
   const Image& img = f.image;
   const auto sum = fnv1a64(img.rgb);
   bool published = false;
@@ -283,6 +297,7 @@ void RenderLoop::render_and_publish(double rotation) {
     published = true;
   }
   std::lock_guard lk(m_);
+  refused_.reset();
   ++frames_rendered_;
   render_ms_ = f.render_ms;
   counters_ = std::move(f.counters);
@@ -391,6 +406,7 @@ std::string RenderLoop::stats_message(std::size_t clients) {
             {"frame", {{"id", frame_id_}, {"checksum", hex64(frame_checksum_)}}},
             {"clients", clients},
             {"counters", counters}};
+  if (refused_) j["refused"] = *refused_;
   if (error_)
     j["error"] = {{"frame_id", error_->frame_id},       {"pixels", error_->pixels},
                   {"correctness", error_->correctness}, {"mean_levels", error_->mean_levels},

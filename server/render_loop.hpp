@@ -121,6 +121,8 @@ class RenderLoop {
   std::uint32_t frame_id_ = 0;
   std::uint64_t frame_checksum_ = 0;
   std::optional<ErrorStats> error_;
+  // Why the device refused the last frame the loop tried (none once one renders again).
+  std::optional<std::string> refused_;
   bool reference_on_ = false;
   // Reference worker.
   std::mutex rm_;

@@ -36,7 +36,10 @@ struct Server::Impl {
         ioc(std::max(1, opt.io_threads)),
         loop(std::move(src), hub, opt.loop),
         ctx{hub, loop, {}, opt.limits} {
-    addr = net::ip::make_address(opt.bind);
+    boost::system::error_code ec;
+    addr = net::ip::make_address(opt.bind, ec);
+    if (ec)  // asio's own message was "Invalid argument", naming nothing
+      throw std::runtime_error("--bind " + opt.bind + ": not an IP address (e.g. 127.0.0.1, ::1)");
     listener = std::make_shared<Listener>(ioc, net::ip::tcp::endpoint{addr, opt.port}, ctx);
     ctx.policy.port = listener->port();
     ctx.policy.names = {"127.0.0.1", "localhost", "[::1]"};

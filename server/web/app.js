@@ -455,6 +455,9 @@ function applyStats(s) {
   $('fps').textContent = s.fps.toFixed(1);
   $('render-ms').textContent = s.render_ms.toFixed(2);
   $('clients').textContent = s.clients;
+  // The device refused the frame it was last given (a turn can take a vertex out of its range):
+  // the image on screen is the last one it drew.
+  $('refused').textContent = s.refused || '';
   const e = s.error;
   // No pixel covered in both images (or a reference of another size) compares nothing: its
   // figures are not a perfect score.

@@ -3,6 +3,7 @@
 # (sscanf's %d wrapped 4294967297 to 1 and ignored trailing text), --rotate a finite angle
 # within ±1e6 degrees (NaN, infinity and 1e308, whose radians overflow, drew a black image and
 # exited 0). Each refusal exits non-zero, names the option and writes no image; good values work.
+# A frame the device refuses at the rotation asked for is refused by render, record and reference.
 # And the exit statuses: 2 on a bad option of any subcommand, 3 when stress cannot write its file.
 # Usage: cli_options_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
@@ -39,6 +40,25 @@ done
   { echo "FAIL: --size 4096x16 --rotate -1e6 refused"; fail=1; }
 "$tp" render "$tri" --size 16X8 --rotate 30.5 -o "$work/ok.png" >/dev/null ||
   { echo "FAIL: --size 16X8 --rotate 30.5 refused"; fail=1; }
+
+# A scene is checked unturned; turned 45 degrees this slab's corners (2.5 × 10,000 units from the
+# axis on x and z) reach 35,355 in eye space, beyond the device's Q15.16. render named no file,
+# record wrote a stream that replay then refused, and reference drew it (found by review,
+# 2026-12-07). Each now refuses the frame, naming the scene and the rotation, and writes nothing.
+printf 'v 2.5 0 2.5\nv 2.5 0.5 2.5\nv -2.5 0 2.5\nv 2.5 0 -2.5\nf 1 2 3\nf 1 4 2\n' > "$work/slab.obj"
+cat > "$work/slab.json" <<'JSON'
+{"camera": {"type": "orthographic", "extents": [-10000, 10000, -10000, 10000],
+            "near": -10000, "far": 10000},
+ "lights": [{"type": "directional", "direction": [0, 0, 1]}],
+ "material": {"colour": [1, 1, 1], "ka": 0.1, "kd": 0.6, "ks": 0.3, "n": 20},
+ "meshes": [{"obj": "slab.obj", "transform": {"scale": 10000}}], "cull": false}
+JSON
+for cmd in render record reference; do
+  refused "slab.json: the device refused the frame at rotation 45 degrees: command draw at word" \
+    $cmd "$work/slab.json" --size 64x64 --rotate 45
+done
+"$tp" render "$work/slab.json" --size 64x64 -o "$work/ok.png" >/dev/null ||
+  { echo "FAIL: the slab unturned refused"; fail=1; }
 
 # exits STATUS TEXT ARGS...: the command must exit with STATUS and print TEXT (found by review,
 # 2026-12-06: CLI11's own codes came through, 104 to 114, and stress took -1, 2^64, "" and 0x10

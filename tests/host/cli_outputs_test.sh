@@ -221,6 +221,16 @@ cmp -s -n "$(stat -c %s new.tpcmd)" piped.out new.tpcmd && grep -aq "words -> /d
   [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
 "$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||
   { echo "FAIL: compare --diff to a new file"; fail=1; }
+# A --row outside the images is refused before anything is written: the old tool wrote the
+# difference image over the file and then refused the row (found by review, 2026-12-07).
+echo precious > keep.png
+status=0
+out=$("$tp" compare a.png b.png --diff keep.png --row 100000 2>&1) || status=$?
+if [ "$status" != 2 ] || [ "$(cat keep.png)" != precious ] || ! grep -qF -- "--row 100000 outside" <<<"$out"; then
+  echo "FAIL: compare --row out of range: status $status, '$out', or keep.png changed"; fail=1
+else
+  echo "ok: compare --row out of range refused, --diff's file kept: $out"
+fi
 cmp -s scene.json "$scenes/triangle.json" && cmp -s quad.obj "$scenes/quad.obj" ||
   { echo "FAIL: an input changed"; fail=1; }
 

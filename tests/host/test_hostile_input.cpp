@@ -163,12 +163,36 @@ TEST(HostileObj, TheScanSeesTheRecordsTheParserSees) {
   EXPECT_NE(obj_error("\fv 0 0 0\n" + kThreeVertices + "f 1 2 4\n")
                 .find("hostile.obj:5: face refers to vertex 4 but the file has 3"),
             std::string::npos);
-  EXPECT_NE(obj_error("v 1\v2 0 0\n").find("hostile.obj:1: v x '1\v2' is not a number"),
+  EXPECT_NE(obj_error("v 1\v2 0 0\n").find("hostile.obj:1: v x '1\\x0b2' is not a number"),
             std::string::npos);
   const std::string normals = obj_error(kThreeVertices + "vn\nvn 0 0 1\nf 1//2 2//2 3//2\n");
   EXPECT_NE(normals.find("hostile.obj:6: face refers to normal 2 but the file has 1"),
             std::string::npos)
       << normals;
+}
+
+// Found by review, 2026-12-07: a UTF-8 byte order mark made the first "v" line no record, so
+// every index named the next vertex and another mesh rendered without a word; tinyobjloader read
+// "v 1" as (1, 0, 0) and "vn 0 1" as (0, 1, 0); and a NUL in a token ended the message there. The
+// mark is skipped, a "v" or "vn" record needs its three numbers, and control bytes are shown.
+TEST(HostileObj, ByteOrderMarkShortRecordsAndControlBytes) {
+  const std::string quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n";
+  const Mesh plain = parse_obj(quad, "q.obj"), marked = parse_obj("\xEF\xBB\xBF" + quad, "q.obj");
+  EXPECT_EQ(marked.positions, plain.positions);
+  EXPECT_EQ(marked.triangles, plain.triangles);
+  EXPECT_NE(obj_error("v 1\n" + kThreeVertices + "f 2 3 4\n")
+                .find("hostile.obj:1: v record with 1 number, not x, y and z"),
+            std::string::npos);
+  EXPECT_NE(obj_error(kThreeVertices + "vn 0 1\nf 1//1 2//1 3//1\n")
+                .find("hostile.obj:4: vn record with 2 numbers, not x, y and z"),
+            std::string::npos);
+  EXPECT_NE(obj_error(kThreeVertices + "v \nf 1 2 3\n")
+                .find("hostile.obj:4: v record with 0 numbers, not x, y and z"),
+            std::string::npos);
+  const std::string nul = obj_error(kThreeVertices + std::string("f 1 2 3 \0 junk\n", 15));
+  EXPECT_NE(nul.find("hostile.obj:4: face corner '\\x00': vertex index is not an integer"),
+            std::string::npos)
+      << nul;
 }
 
 TEST(HostileObj, AZeroNormalIsReportedAtItsRecord) {

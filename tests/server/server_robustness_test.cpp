@@ -445,3 +445,87 @@ TEST(ServerRobustness, OutOfDescriptorsTheListenerWaitsAndRecovers) {
   EXPECT_TRUE(served);
   std::filesystem::remove(log);
 }
+
+// A scene is checked unturned when it is loaded; a frame the device then refuses (here every
+// one: a vertex 40,000 units up the turning axis, beyond Q15.16 at any rotation) made the render
+// loop's thread throw and the server abort. Now the stats say why, the server keeps serving, and
+// the next scene renders. Two scenes of one triangle, in a folder of their own.
+TEST(ServerRobustness, AFrameTheDeviceRefusesIsReportedAndServingContinues) {
+  const std::filesystem::path dir =
+      ::testing::TempDir() + "tp_server_refused_" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "tri.obj") << "v 0 4 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
+  for (const auto& [name, scale] : {std::pair{"fine", 1}, std::pair{"tower", 10000}})
+    std::ofstream(dir / (std::string(name) + ".json")) << json{
+        {"name", name},
+        {"resolution", {160, 120}},
+        {"camera",
+         {{"type", "orthographic"},
+          {"extents", {-10000, 10000, -10000, 10000}},
+          {"near", -10000},
+          {"far", 10000}}},
+        {"lights", {{{"type", "directional"}, {"direction", {0, 0, 1}}}}},
+        {"material", {{"colour", {1, 1, 1}}, {"ka", 0.1}, {"kd", 0.6}, {"ks", 0.3}, {"n", 20}}},
+        {"meshes", {{{"obj", "tri.obj"}, {"transform", {{"scale", scale}}}}}},
+        {"cull", false}}.dump();
+  ServerProcess srv({"--scenes-dir", dir.string(), "--scene", "fine", "--max-fps", "60"});
+  WsClient c(srv.port());
+  ASSERT_EQ(read_frames(c, 1, 10s), 1);
+  c.send_json({{"type", "set_scene"}, {"name", "tower"}});
+  ASSERT_TRUE(c.read_json("ok", 10s).is_object());  // loads: unturned it is checked, not drawn
+  json refused;
+  for (int i = 0; i < 40 && !refused.is_string(); ++i) {
+    const json st = c.read_json("stats", 10s);
+    ASSERT_TRUE(st.is_object());
+    if (st.contains("refused")) refused = st["refused"];
+  }
+  ASSERT_TRUE(refused.is_string());
+  const std::string why = refused.get<std::string>();
+  EXPECT_EQ(why.rfind("tower.json: the device refused the frame at rotation ", 0), 0u) << why;
+  EXPECT_NE(why.find("outside the device's range"), std::string::npos) << why;
+  EXPECT_EQ(why.find(dir.string()), std::string::npos) << why;  // not where the server keeps it
+  EXPECT_TRUE(srv.running());
+  // Still serving: the state, and the next scene renders and clears the report.
+  c.send_json({{"type", "get_state"}});
+  EXPECT_EQ(c.read_json("state", 10s)["scene"], "tower");
+  c.send_json({{"type", "set_scene"}, {"name", "fine"}});
+  ASSERT_TRUE(c.read_json("ok", 10s).is_object());
+  bool cleared = false;
+  for (int i = 0; i < 40 && !cleared; ++i) {
+    const json st = c.read_json("stats", 10s);
+    ASSERT_TRUE(st.is_object());
+    cleared = !st.contains("refused");
+  }
+  EXPECT_TRUE(cleared);
+  EXPECT_TRUE(srv.running());
+  std::filesystem::remove_all(dir);
+}
+
+// Bad options exit with 2 naming the option, as the tinyphong CLI's (CLI11's own codes, 104 to
+// 114, came through); NaN pacing or deadline passed CLI::Range and became a duration (undefined
+// behaviour: an unpaced loop, every client cut off). Found by review, 2026-12-07.
+TEST(ServerRobustness, BadOptionsAreRefusedNamingTheOption) {
+  const std::pair<std::string, std::string> bad[] = {
+      {"--max-fps nan", "--max-fps: a number in [1 - 1000], got 'nan'"},
+      {"--max-fps inf", "--max-fps: a number in [1 - 1000], got 'inf'"},
+      {"--deadline nan", "--deadline: a number in [0.2 - 600], got 'nan'"},
+      {"--deadline 0.1", "--deadline: a number in [0.2 - 600], got '0.1'"},
+      {"--port 99999", "--port: Value 99999 not in range 0 to 65535"},
+      {"--width 15", "--width: Value 15 not in range 16 to 2048"},
+      {"--no-such-option", "no-such-option"},
+  };
+  for (const auto& [args, text] : bad) {
+    SCOPED_TRACE(args);
+    const std::string command =
+        std::string(TP_SERVER_BINARY) + " --source pattern " + args + " 2>&1";
+    FILE* p = ::popen(command.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string out;
+    std::array<char, 256> buf{};
+    while (std::fgets(buf.data(), static_cast<int>(buf.size()), p) != nullptr) out += buf.data();
+    const int status = ::pclose(p);
+    ASSERT_TRUE(WIFEXITED(status)) << out;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+    EXPECT_NE(out.find(text), std::string::npos) << out;
+  }
+}
