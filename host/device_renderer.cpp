@@ -187,6 +187,13 @@ DeviceRenderer::Prepared DeviceRenderer::prepare(const Scene& scene) const {
   if (m.a && m.b) {
     if (auto q = to_fixed<q2_29>(*m.a, "material a", report)) p.material.a = *q;
     if (auto q = to_fixed<q2_29>(*m.b, "material b", report)) p.material.b = *q;
+    // a < b as doubles can round to one angle: the device would refuse set_material, naming no
+    // field.
+    if (report.ok() && !(p.material.a < p.material.b))
+      reject(scene, "/material/b",
+             "b = " + std::to_string(*m.b) + " is a = " + std::to_string(*m.a) +
+                 " in the device's angle format (Q2.29, steps of 2^-29 radian): b must exceed a"
+                 " by at least that");
   }
 
   const auto lights = eye_lights(scene);

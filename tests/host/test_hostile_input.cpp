@@ -306,3 +306,26 @@ TEST(HostileSize, SizeTextIsTwoWholeNumbersWithinTheDevice) {
     EXPECT_FALSE(parse_size(bad).has_value()) << bad;
   EXPECT_EQ(tp::host::size_expected("9x"), "expected WIDTHxHEIGHT, each 1..4096, got '9x'");
 }
+
+// Found by review, 2026-12-07: a < b as doubles that round to one angle in the device's Q2.29
+// passed the scene's check, and the device refused set_material, naming no field. The host
+// names it.
+TEST(HostileScene, AnglesThatRoundToOneAreRefusedNamingB) {
+  const auto with_ab = [](const std::string& a, const std::string& b) {
+    return "{\"meshes\": [{\"generator\": \"triangle\"}], \"lights\": [],"
+           " \"camera\": {\"type\": \"orthographic\"},"
+           " \"material\": {\"a\": " +
+           a + ", \"b\": " + b + "}}";
+  };
+  DeviceRenderer device(64, 64);
+  try {
+    device.set_scene(parse_scene(with_ab("1.5707963267948", "1.5707963267948966"), "ab.json",
+                                 TP_HOST_TEST_DATA));
+    ADD_FAILURE() << "the scene was taken";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "/material/b");
+    EXPECT_NE(e.problem().find("b must exceed a by at least that"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(device.set_scene(
+      parse_scene(with_ab("0.5", "1.5707963267948966"), "ab.json", TP_HOST_TEST_DATA)));
+}

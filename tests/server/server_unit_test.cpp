@@ -104,6 +104,9 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_exponent\",\"n\":20,\"a\":0.1,\"b\":0.3}", "either 'n' or both"},
       {"{\"type\":\"set_exponent\",\"a\":0.1}", "both 'a' and 'b'"},
       {"{\"type\":\"set_exponent\",\"a\":0.5,\"b\":0.3}", "'a' must be less than 'b'"},
+      // π/2 is the device's bound (the server took up to π, which the device then refused).
+      {"{\"type\":\"set_exponent\",\"a\":0.5,\"b\":3}",
+       "'b' out of range [0.0001, 1.5707963267948966]"},
       {"{\"type\":\"set_material\",\"kd\":1.5}", "'kd' out of range"},
       {"{\"type\":\"set_material\",\"color\":[1,1]}", "array of 3 numbers"},
       {"{\"type\":\"set_material\"}", "needs"},
@@ -196,6 +199,7 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_EQ(src.settings().lights.size(), 1u);
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"n\":10000}"), "");  // the device's bound
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":0.3}"), "");
+  EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":1.5707963267948966}"), "");
   EXPECT_TRUE(src.settings().use_ab);
   EXPECT_EQ(run("{\"type\":\"specular_only\",\"on\":true}"), "");
   EXPECT_TRUE(src.settings().specular_only);
