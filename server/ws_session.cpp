@@ -46,10 +46,18 @@ void WsSession::on_accept(beast::error_code ec) {
 }
 
 void WsSession::do_read() {
+  reading_ = true;
   ws_.async_read(buffer_, beast::bind_front_handler(&WsSession::on_read, shared_from_this()));
 }
 
+void WsSession::resume_reading() {
+  if (reading_ || !open_ || closing_) return;
+  if (text_q_.size() + awaiting_ >= limits_.max_text_queue / 2) return;  // on_write resumes
+  do_read();
+}
+
 void WsSession::on_read(beast::error_code ec, std::size_t) {
+  reading_ = false;
   if (ec) {  // closed by the peer, too big (Beast already sent close 1009), or aborted
     if (open_) fail(ec, "websocket read");  // not after our own abort()
     abort();
@@ -61,7 +69,7 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
     reply("", Result::failure("binary messages are not accepted"));
   }
   buffer_.consume(buffer_.size());
-  do_read();
+  resume_reading();
 }
 
 void WsSession::handle_text(const std::string& text) {
@@ -84,10 +92,17 @@ void WsSession::handle_text(const std::string& text) {
   const ControlType type = c.type;
   auto done = [weak, type](const Result& outcome) {
     if (auto self = weak.lock())
-      net::post(self->ws_.get_executor(),
-                [self, type, outcome] { self->reply(to_string(type), outcome); });
+      net::post(self->ws_.get_executor(), [self, type, outcome] {
+        --self->awaiting_;
+        self->reply(to_string(type), outcome);
+        self->resume_reading();
+      });
   };
-  if (Result busy = loop_.submit(c, std::move(done)); !busy.ok()) reply(to_string(type), busy);
+  ++awaiting_;
+  if (Result busy = loop_.submit(c, std::move(done)); !busy.ok()) {
+    --awaiting_;
+    reply(to_string(type), busy);
+  }
 }
 
 void WsSession::handle_ack(const Command& c) {
@@ -186,6 +201,7 @@ void WsSession::on_write(beast::error_code ec, std::size_t) {
     return;
   }
   pump();
+  resume_reading();
 }
 
 void WsSession::arm_watchdog() {

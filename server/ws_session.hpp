@@ -48,6 +48,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void on_accept(beast::error_code ec);
   void do_read();
   void on_read(beast::error_code ec, std::size_t n);
+  // Reads the next message unless a read is pending or the client is owed half a text queue of
+  // replies (queued, or still with the render loop): a client that sends faster than its replies
+  // can be written waits for them instead of overflowing its queue.
+  void resume_reading();
   void handle_text(const std::string& text);
   void handle_ack(const Command& c);
   // {"type":"ok"|"error","request":request[,"error":…]}; request is "" when the message names
@@ -81,7 +85,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   std::deque<InFlight> in_flight_;
   FramePtr writing_frame_;  // keeps the buffer alive during async_write
   TextPtr writing_text_;
-  bool writing_ = false, open_ = false, closing_ = false;
+  bool writing_ = false, open_ = false, closing_ = false, reading_ = false;
+  std::size_t awaiting_ = 0;  // control messages with the render loop, each owed a reply
   std::chrono::steady_clock::time_point write_started_, closing_since_;
 };
 

@@ -529,3 +529,34 @@ TEST(ServerRobustness, BadOptionsAreRefusedNamingTheOption) {
     EXPECT_NE(out.find(text), std::string::npos) << out;
   }
 }
+
+// A burst of messages sent back to back: each gets its reply, and the client stays connected.
+// The session read them as fast as they came and queued a reply each, faster than one write at a
+// time drained the 64-message queue, so a client sending about 150 was cut off after 70 to 110
+// replies although it read them (found by review, 2026-12-07). Now a client owed half a queue of
+// replies is read no further until they are written.
+TEST(ServerRobustness, ABurstOfMessagesGetsEveryReply) {
+  ServerProcess srv(pattern_args());
+  WsClient c(srv.port());
+  ASSERT_EQ(read_frames(c, 1, 10s), 1);
+  constexpr int kBurst = 400;
+  for (int i = 0; i < kBurst; ++i) c.send(i % 2 == 0 ? "not json" : "{\"type\":\"step\"}");
+  int errors = 0, oks = 0;
+  const auto end = Clock::now() + 30s;
+  while (errors + oks < kBurst && Clock::now() < end) {
+    Message m = c.read(5s);
+    if (!m.ok) break;
+    if (m.binary) {
+      c.ack(m.data);
+      continue;
+    }
+    const json j = json::parse(m.data);
+    if (j["type"] == "error" && j["request"] == "") ++errors;
+    if (j["type"] == "ok" && j["request"] == "step") ++oks;
+    if (j["type"] == "error" && j["request"] == "step") ++oks;  // "server busy" is a reply too
+  }
+  EXPECT_EQ(errors, kBurst / 2);
+  EXPECT_EQ(oks, kBurst / 2);
+  c.send_json({{"type", "get_state"}});
+  EXPECT_TRUE(c.read_json("state", 10s).is_object());
+}
