@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -233,15 +236,31 @@ ParseResult parse_control(const std::string& text) {
   if (text.size() > kControlMessageLimit)
     return {std::nullopt, "message too large (" + std::to_string(text.size()) + " bytes > " +
                               std::to_string(kControlMessageLimit) + ")"};
-  json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  // A key given twice in one object: JSON lets nlohmann keep the last value, so
+  // {"type":"step","type":"set_budget","levels":3} was a set_budget. Refused, as the scene
+  // files refuse it (host/scene.cpp).
+  std::vector<std::set<std::string>> keys;
+  std::string twice;
+  const json::parser_callback_t note_keys = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    if (event == json::parse_event_t::object_end) keys.pop_back();
+    if (event == json::parse_event_t::key && twice.empty() &&
+        !keys.back().insert(parsed.get<std::string>()).second)
+      twice = parsed.get<std::string>();
+    return true;
+  };
+  json j = json::parse(text, note_keys, /*allow_exceptions=*/false);
   if (j.is_discarded()) return {std::nullopt, "malformed JSON"};
   if (!j.is_object()) return {std::nullopt, "message must be a JSON object"};
+  const std::string duplicate = "duplicate key '" + clip_utf8(twice, 64) + "'";
+  if (twice == "type") return {std::nullopt, duplicate};
   if (!j.contains("type") || !j["type"].is_string()) return {std::nullopt, "missing string 'type'"};
   const auto type_name = j["type"].get<std::string>();
   Command c;
   c.type = string_to_control_type(type_name);
   if (c.type == ControlType::unknown)
     return {std::nullopt, "unknown message type '" + clip_utf8(type_name, 64) + "'"};
+  if (!twice.empty()) return {std::nullopt, duplicate, c.type};
   for (const auto& [k, v] : j.items())
     if (k != "type" && !allows(c.type, k))
       return {std::nullopt, "unknown field '" + clip_utf8(k, 64) + "'", c.type};

@@ -36,6 +36,9 @@ bool HostPolicy::origin_ok(std::string_view origin) const {
 }
 
 Response route(const Request& req, const HostPolicy& policy) {
+  // RFC 7230, 5.4: a request with more than one Host gets 400 (the first alone was checked).
+  if (req.count(http::field::host) > 1)
+    return plain(req, http::status::bad_request, "more than one Host header\n");
   if (!policy.host_ok(req[http::field::host]))
     return plain(req, http::status::forbidden, "forbidden host\n");
   if (req.method() != http::verb::get && req.method() != http::verb::head) {
@@ -84,8 +87,12 @@ std::optional<Response> refusal_for_size(boost::beast::error_code ec) {
 }
 
 std::string check_upgrade(const Request& req, const HostPolicy& policy, http::status& status) {
+  status = http::status::bad_request;
+  if (req.count(http::field::host) > 1) return "more than one Host header";
   status = http::status::forbidden;
   if (!policy.host_ok(req[http::field::host])) return "forbidden host";
+  // Only the first Origin would have been checked; browsers send one.
+  if (req.count(http::field::origin) > 1) return "forbidden origin";
   if (!policy.origin_ok(req[http::field::origin])) return "forbidden origin";
   status = http::status::not_found;
   if (req.target() != "/ws") return "no WebSocket at this path";

@@ -50,24 +50,31 @@ void check_policy(std::string_view s) {
 void check_route(const tp::server::Request& req) {
   const tp::server::Response res = tp::server::route(req, policy());
   const auto status = res.result();
-  const bool host = host_allowed(req[http::field::host]);
+  const bool one_host = req.count(http::field::host) <= 1;
+  const bool host = one_host && host_allowed(req[http::field::host]);
   const bool get = req.method() == http::verb::get || req.method() == http::verb::head;
-  TP_FUZZ_CHECK(status == http::status::ok || status == http::status::forbidden ||
-                    status == http::status::not_found || status == http::status::method_not_allowed,
-                "route answers 200, 403, 404 or 405");
-  if (!host) TP_FUZZ_CHECK(status == http::status::forbidden, "a foreign Host gets 403");
+  TP_FUZZ_CHECK(status == http::status::ok || status == http::status::bad_request ||
+                    status == http::status::forbidden || status == http::status::not_found ||
+                    status == http::status::method_not_allowed,
+                "route answers 200, 400, 403, 404 or 405");
+  TP_FUZZ_CHECK((status == http::status::bad_request) == !one_host,
+                "400 exactly for more than one Host header (RFC 7230, 5.4)");
+  if (one_host && !host)
+    TP_FUZZ_CHECK(status == http::status::forbidden, "a foreign Host gets 403");
   if (status == http::status::ok)
     TP_FUZZ_CHECK(host && get && is_asset(req.target()), "200 only for an asset, by GET/HEAD");
 
   http::status upgrade_status{};
   const std::string why = tp::server::check_upgrade(req, policy(), upgrade_status);
   if (why.empty())
-    TP_FUZZ_CHECK(host && policy().origin_ok(req[http::field::origin]) && req.target() == "/ws",
-                  "an upgrade only to /ws from an allowed Host and Origin");
+    TP_FUZZ_CHECK(host && req.count(http::field::origin) <= 1 &&
+                      policy().origin_ok(req[http::field::origin]) && req.target() == "/ws",
+                  "an upgrade only to /ws from one allowed Host and at most one allowed Origin");
   else
-    TP_FUZZ_CHECK(
-        upgrade_status == http::status::forbidden || upgrade_status == http::status::not_found,
-        "a refused upgrade gets 403 or 404");
+    TP_FUZZ_CHECK(upgrade_status == http::status::bad_request ||
+                      upgrade_status == http::status::forbidden ||
+                      upgrade_status == http::status::not_found,
+                  "a refused upgrade gets 400, 403 or 404");
 }
 
 }  // namespace

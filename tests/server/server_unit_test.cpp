@@ -91,6 +91,11 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"x\":1}", "type"},
       {"{\"type\":\"launch_missiles\"}", "unknown message type 'launch_missiles'"},
       {"{\"type\":\"set_method\",\"method\":\"phong\",\"extra\":1}", "unknown field 'extra'"},
+      // A key twice: nlohmann kept the last (found by review, 2026-12-07).
+      {"{\"type\":\"step\",\"type\":\"set_budget\",\"levels\":3}", "duplicate key 'type'"},
+      {"{\"type\":\"set_budget\",\"levels\":99,\"levels\":3}", "duplicate key 'levels'"},
+      {"{\"type\":\"add_light\",\"kind\":\"point\",\"vector\":[1,2,3],\"kind\":\"point\"}",
+       "duplicate key 'kind'"},
       {"{\"type\":\"set_method\"}", "missing 'method'"},
       {"{\"type\":\"set_method\",\"method\":5}", "'method' must be a string"},
       {"{\"type\":\"set_budget\"}", "missing 'levels'"},
@@ -136,6 +141,9 @@ TEST(Control, AnErrorNamesTheTypeWhenItIsKnown) {
   EXPECT_EQ(parse_control("{\"type\":\"set_method\",\"extra\":1}").type, ControlType::set_method);
   EXPECT_EQ(parse_control("{\"type\":\"launch_missiles\"}").type, ControlType::unknown);
   EXPECT_EQ(parse_control("{").type, ControlType::unknown);
+  EXPECT_EQ(parse_control("{\"type\":\"set_budget\",\"levels\":9,\"levels\":3}").type,
+            ControlType::set_budget);
+  EXPECT_EQ(parse_control("{\"type\":\"step\",\"type\":\"pause\"}").type, ControlType::unknown);
   EXPECT_EQ(parse_control("{\"type\":\"pause\"}").type, ControlType::pause);
 }
 
@@ -289,6 +297,19 @@ TEST(Http, RefusesForeignHostsAndOrigins) {
   Request elsewhere = get("/other");
   EXPECT_NE(check_upgrade(elsewhere, policy(), st), "");
   EXPECT_EQ(st, http::status::not_found);
+  // A second Host or Origin after a good one: only the first was checked (found by review,
+  // 2026-12-07). RFC 7230 asks 400 for a second Host.
+  Request two_hosts = get("/");
+  two_hosts.insert(http::field::host, "evil.example");
+  EXPECT_EQ(route(two_hosts, policy()).result(), http::status::bad_request);
+  two_hosts.target("/ws");
+  EXPECT_EQ(check_upgrade(two_hosts, policy(), st), "more than one Host header");
+  EXPECT_EQ(st, http::status::bad_request);
+  Request two_origins = get("/ws");
+  two_origins.set(http::field::origin, "http://127.0.0.1:8080");
+  two_origins.insert(http::field::origin, "http://evil.example");
+  EXPECT_EQ(check_upgrade(two_origins, policy(), st), "forbidden origin");
+  EXPECT_EQ(st, http::status::forbidden);
 }
 
 namespace {
