@@ -10,8 +10,19 @@ namespace tp::host {
 int line_of_offset(std::string_view text, std::size_t offset) {
   int line = 1;
   for (std::size_t i = 0; i < offset && i < text.size(); ++i)
-    if (text[i] == '\n') ++line;
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')))
+      ++line;
   return line;
+}
+
+std::size_t start_of_line(std::string_view text, int line) {
+  std::size_t at = 0;
+  for (int l = 1; l < line && at < text.size(); ++l) {
+    const std::size_t end = text.find_first_of("\r\n", at);
+    if (end == std::string_view::npos) return text.size();
+    at = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+  }
+  return at;
 }
 
 std::string json_pointer_token(std::string_view key) {

@@ -339,8 +339,7 @@ void reject_duplicate_keys(std::string_view text, const std::string& file) {
           const std::string parent = path(stack.size() - 1);
           const std::string needle = "\"" + top.key + "\"";
           std::size_t at = 0;
-          if (const int pl = line_of_pointer(text, parent); pl > 0)
-            for (int l = 1; l < pl; ++l) at = text.find('\n', at) + 1;
+          if (const int pl = line_of_pointer(text, parent); pl > 0) at = start_of_line(text, pl);
           at = text.find(needle, at);
           if (at != std::string_view::npos) at = text.find(needle, at + 1);
           const int line = at == std::string_view::npos ? 0 : line_of_offset(text, at);

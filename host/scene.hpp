@@ -141,8 +141,11 @@ glm::dmat4 model_view(const Scene& scene, const MeshSpec& mesh);
 std::vector<EyeLight> eye_lights(const Scene& scene);
 bool eye_at_infinity(const Camera& camera);  // orthographic: V = (0, 0, 1)
 
-// 1-based line of a byte offset in text (for parse errors).
+// 1-based line of a byte offset in text (for parse errors). Lines end at "\n", "\r\n" or a lone
+// "\r", as in the OBJ reader (a file with old Mac line ends was all line 1).
 int line_of_offset(std::string_view text, std::size_t offset);
+// The byte offset where 1-based line `line` starts (the text's size past its last line).
+std::size_t start_of_line(std::string_view text, int line);
 // 1-based line where the value at a JSON pointer starts, 0 if not found. `text` must be
 // valid JSON (the scene parser calls it only after nlohmann accepted the text).
 int line_of_pointer(std::string_view text, std::string_view pointer);

@@ -213,3 +213,31 @@ TEST(Matrices, PerspectiveTeapotLightGoesToEyeSpace) {
   const glm::dvec4 cam = v * glm::dvec4(0, 1.5, 6, 1);
   EXPECT_NEAR(glm::length(glm::dvec3(cam)), 0, 1e-12);
 }
+
+// Lines end at "\n", "\r\n" or a lone "\r", as in the OBJ reader: a scene with old Mac line ends
+// reported every error on line 1 (found by review, 2026-12-07). The same scene three ways: a
+// value out of range on line 5, and a key repeated on line 6 (found by a search from its object's
+// line).
+TEST(SceneParse, LinesEndAtLfCrLfOrALoneCr) {
+  for (const std::string eol : {"\n", "\r\n", "\r"}) {
+    SCOPED_TRACE(eol == "\r" ? "CR" : eol == "\n" ? "LF" : "CRLF");
+    const auto scene = [&eol](const std::string& material) {
+      return "{" + eol + "\"meshes\": [{\"generator\": \"triangle\"}]," + eol +
+             "\"camera\": {\"type\": \"orthographic\"}, \"lights\": []," + eol + "\"material\": {" +
+             eol + material + "}" + eol + "}";
+    };
+    try {
+      parse_scene(scene("\"ka\": 2"), "eol.json", ".");
+      ADD_FAILURE() << "ka = 2 taken";
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.line(), 5) << e.what();
+      EXPECT_EQ(e.path(), "/material/ka");
+    }
+    try {
+      parse_scene(scene("\"ka\": 0.1," + eol + "\"ka\": 0.2"), "eol.json", ".");
+      ADD_FAILURE() << "a key twice taken";
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.line(), 6) << e.what();
+    }
+  }
+}
