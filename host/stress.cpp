@@ -33,7 +33,12 @@ std::uint64_t counter(const CounterSnapshot& counters, std::string_view name) {
 }
 
 std::vector<std::string> selected_methods(const Options& o) {
-  if (!o.methods.empty()) return o.methods;
+  if (!o.methods.empty()) {  // each once, in the order given ("kb,kb" ran kb twice)
+    std::vector<std::string> once;
+    for (const std::string& m : o.methods)
+      if (std::find(once.begin(), once.end(), m) == once.end()) once.push_back(m);
+    return once;
+  }
   std::vector<std::string> all;
   for (const auto& m : method_names()) all.emplace_back(m.name);
   return all;
@@ -165,7 +170,8 @@ void print_tables(std::ostream& out, const std::vector<Result>& results) {
   }
   const auto bad = std::count_if(results.begin(), results.end(),
                                  [](const Result& r) { return r.verdict != Verdict::kWithin; });
-  out << results.size() << " results, " << bad << " outside their documented bound\n"
+  out << results.size() << (results.size() == 1 ? " result, " : " results, ") << bad
+      << " outside their documented bound\n"
       << "(max, mean: |error| against the double reference in 8-bit levels over the pixels both "
          "cover; sat: the device's saturation counter for the frame; a bound also holds the "
          "pixels one image alone covers to the case's count)\n";

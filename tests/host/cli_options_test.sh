@@ -84,6 +84,9 @@ exits 2 "--size" render "$tri" --size 0x5 -o "$work/out.png"
 exits 2 "--size: expected WIDTHxHEIGHT" record "$tri" --size 5x0 -o "$work/out.tpcmd"
 exits 2 "--methods: unknown shading method 'bogus'" stress --cases ab-min --methods flat,bogus
 exits 3 "/dev/full: cannot write" stress --cases ab-min --methods flat --json /dev/full
+# A method named twice runs once (it ran twice, every row doubled; found by review, 2026-12-07).
+twice=$("$tp" stress --cases ab-min --methods flat,flat 2>&1 || true)
+grep -q "^1 result, " <<<"$twice" || { echo "FAIL: stress --methods flat,flat: '$twice'"; fail=1; }
 # (its verdict is not the point: the bounds are the default seed's, docs/STABILITY.md)
 "$tp" stress --cases ab-min --methods flat --seed 18446744073709551615 --json "$work/s.json" \
   >/dev/null 2>&1 || true
