@@ -62,7 +62,11 @@ void worst(const char* name, Source src, int from) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char**) {
+  if (argc > 1) {  // it takes none: --help or a typo ran the whole table and exited 0
+    std::fprintf(stderr, "usage: accuracy_cosn (no arguments): the table of docs/ACCURACY.md\n");
+    return 2;
+  }
   std::printf(
       "| n | paper %% | closed %% | LS closed %% | LS fit %% | minimax %% | paper a b | "
       "closed a b | LS closed a b | LS a b | minimax a b |\n"

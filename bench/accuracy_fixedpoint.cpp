@@ -1,6 +1,7 @@
 // Prints the accuracy of every fixed-point function against long double as a markdown table:
 // max |err|, mean |err| and mean signed err in LSB of the output format, over the same input
 // sets as the tests (tests/fixedpoint/measure.hpp). Usage: accuracy_fixedpoint [filter]
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -16,6 +17,17 @@ int main(int argc, char** argv) {
   for (auto& c : trig_cases()) cases.push_back(std::move(c));
   for (auto& c : trig_fast_cases()) cases.push_back(std::move(c));
   for (auto& c : quat_cases()) cases.push_back(std::move(c));
+  // A filter that names no function (--help, a typo) printed an empty table and exited 0.
+  const bool any = filter.empty() || std::any_of(cases.begin(), cases.end(), [&](const Case& c) {
+                     return c.name.find(filter) != std::string::npos;
+                   });
+  if (argc > 2 || !any) {
+    std::fprintf(stderr,
+                 "usage: accuracy_fixedpoint [FILTER]: FILTER a part of a function's name,"
+                 " e.g. sqrt; '%s' names none\n",
+                 argc > 1 ? argv[1] : "");
+    return 2;
+  }
   std::printf(
       "| function | inputs | n | max abs err (LSB) | mean abs err (LSB) | mean err (LSB) |\n");
   std::printf("|---|---|---:|---:|---:|---:|\n");

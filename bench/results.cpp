@@ -142,6 +142,12 @@ int main(int argc, char** argv) {
   // (SIGABRT), the method blamed on a scene file's line 0.
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   const std::optional<Size> resolution = parse_size(size);  // none without --size
+  const std::vector<std::string> scenes = each_once(split(scenes_arg));
+  if (scenes.empty()) {  // printed the header alone and exited 0
+    std::cerr << "--scenes: no scene named in '" << scenes_arg << "'\n";
+    return 2;
+  }
+  methods = each_once(methods);
   if (methods.empty())
     for (const auto& m : method_names()) methods.emplace_back(m.name);
   if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())
@@ -156,8 +162,7 @@ int main(int argc, char** argv) {
             << reps << " interleaved rounds).\n\n";
 
   try {
-    for (const std::string& name : split(scenes_arg))
-      print_scene(name, resolution, methods, reps, peer);
+    for (const std::string& name : scenes) print_scene(name, resolution, methods, reps, peer);
   } catch (const std::exception& e) {  // a scene that does not load or does not fit the device
     std::cerr << "tinyphong-results: " << e.what() << "\n";
     return 1;

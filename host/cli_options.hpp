@@ -4,9 +4,11 @@
 // program had its own copy of the method check until 2026-12-07.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +38,15 @@ inline CLI::Validator size_check() {
         return parse_size(text) ? std::string() : size_expected(text);
       },
       "WxH");
+}
+
+// A list option's names, each once, in the order first given: "kb,kb" ran kb twice in stress
+// and in tinyphong-results, every row doubled.
+inline std::vector<std::string> each_once(const std::vector<std::string>& names) {
+  std::vector<std::string> once;
+  for (const std::string& n : names)
+    if (std::find(once.begin(), once.end(), n) == once.end()) once.push_back(n);
+  return once;
 }
 
 // Parses the command line. Returns the exit status when the program should stop here: 0 after

@@ -30,16 +30,31 @@ fw::Vec3u unit_vector(const glm::dvec3& v, const std::string& what, ConversionRe
   return q ? fw::Vec3u{(*q)[0], (*q)[1], (*q)[2]} : fw::Vec3u{};
 }
 
+// A coordinate or matrix entry as the device takes it: Q15.16 within |v| < 2^14
+// (fw::kMaxCoordRaw: its four-term dot products stay within 64 bits). Q15.16's own range is
+// twice that, and the device refused what lay between with a message naming only the command
+// and its word (a mesh's vertex at 30,000 units: "upload_vertices at word 235 failed").
+std::optional<q15_16> coordinate(double v, const std::string& what, ConversionReport& report) {
+  const auto q = to_fixed<q15_16>(v, what, report);
+  if (q && (q->raw() > fw::kMaxCoordRaw || q->raw() < -fw::kMaxCoordRaw)) {
+    const double limit = fw::kMaxCoordRaw / 65536.0;
+    report.add({what, v, -limit, limit, "the device's coordinates (Q15.16, |v| < 2^14)"});
+    return std::nullopt;
+  }
+  return q;
+}
+
 fw::Vec3q16 position(const glm::dvec3& v, const std::string& what, ConversionReport& report) {
-  const auto q = to_fixed3<q15_16>(v, what, report);
-  return q ? fw::Vec3q16{(*q)[0], (*q)[1], (*q)[2]} : fw::Vec3q16{};
+  const auto x = coordinate(v.x, what + ".x", report), y = coordinate(v.y, what + ".y", report),
+             z = coordinate(v.z, what + ".z", report);
+  return x && y && z ? fw::Vec3q16{*x, *y, *z} : fw::Vec3q16{};
 }
 
 fw::Mat4 to_device_matrix(const glm::dmat4& m, const std::string& what, ConversionReport& report) {
   fw::Mat4 out{};
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) {
-      const auto q = to_fixed<q15_16>(
+      const auto q = coordinate(
           m[c][r], what + "[" + std::to_string(c) + "][" + std::to_string(r) + "]", report);
       if (q) out.m[c][r] = *q;
     }

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/cli_options.hpp"
 #include "host/device_renderer.hpp"
 #include "host/image_io.hpp"
 
@@ -33,12 +34,7 @@ std::uint64_t counter(const CounterSnapshot& counters, std::string_view name) {
 }
 
 std::vector<std::string> selected_methods(const Options& o) {
-  if (!o.methods.empty()) {  // each once, in the order given ("kb,kb" ran kb twice)
-    std::vector<std::string> once;
-    for (const std::string& m : o.methods)
-      if (std::find(once.begin(), once.end(), m) == once.end()) once.push_back(m);
-    return once;
-  }
+  if (!o.methods.empty()) return each_once(o.methods);
   std::vector<std::string> all;
   for (const auto& m : method_names()) all.emplace_back(m.name);
   return all;

@@ -12,13 +12,16 @@
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -206,8 +209,11 @@ void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& m
       if (d > 0) px.push_back({d, x, y});
     }
   const auto count = std::min<std::size_t>(px.size(), static_cast<std::size_t>(n));
+  // Ties in row order, then column: the list for N is the start of the list for any larger N.
   std::partial_sort(px.begin(), px.begin() + static_cast<std::ptrdiff_t>(count), px.end(),
-                    [](const Px& l, const Px& r) { return l.d > r.d; });
+                    [](const Px& l, const Px& r) {
+                      return l.d != r.d ? l.d > r.d : l.y != r.y ? l.y < r.y : l.x < r.x;
+                    });
   std::cout << "worst pixels (x, y: first rgb / second rgb):\n";
   for (std::size_t k = 0; k < count; ++k) {
     const auto* pa = a.at(px[k].x, px[k].y);
@@ -410,9 +416,34 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
   return 0;
 }
 
+// Whether everything written to standard output reached it. A report redirected to a full disk
+// (`replay --hash *.tpcmd > hashes.txt`) was lost without a word and the exit status was 0.
+bool standard_output_written() {
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  if (flushed && std::ferror(stdout) == 0) return true;
+  const int error = errno;
+  std::cerr << "tinyphong: standard output: cannot write"
+            << (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+  return false;
+}
+
+int run(int argc, char** argv);
+
 }  // namespace
 
+// A failed write to standard output is an error: exit 1, or 3 for stress, whose 1 means a
+// result outside its bound (docs/STABILITY.md).
 int main(int argc, char** argv) {
+  const int status = run(argc, argv);
+  if (standard_output_written()) return status;
+  const bool stress = argc > 1 && std::string_view(argv[1]) == "stress";
+  return status != 0 && status != 1 ? status : stress ? 3 : 1;
+}
+
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"tinyphong: an emulated integer-only GPU and its desktop tools"};
   app.require_subcommand(1);
 
@@ -425,7 +456,8 @@ int main(int argc, char** argv) {
       ->check(method_check());
   add_budget_option(render, render_opts);
   add_depth_buffer_option(render, render_opts);
-  render->add_option("-o,--output", render_out, "PNG file to write");
+  render->add_option("-o,--output", render_out, "PNG file to write (replaced if it exists)")
+      ->capture_default_str();
   render->add_flag("--compare", render_compare,
                    "also render the double reference and print the error metrics");
 
@@ -434,7 +466,8 @@ int main(int argc, char** argv) {
   bool ref_angular = false;
   auto* reference = app.add_subcommand("reference", "render the double-precision reference");
   add_scene_options(reference, ref_opts);
-  reference->add_option("-o,--output", ref_out, "PNG file to write (8-bit)");
+  reference->add_option("-o,--output", ref_out, "PNG file to write, 8-bit (replaced if it exists)")
+      ->capture_default_str();
   reference->add_option("--exr", ref_exr, "also write the linear float image as OpenEXR");
   reference->add_flag("--angular", ref_angular,
                       "slerp the normals (Kuijk-Blake's interpolation) instead of Phong's");
@@ -450,7 +483,7 @@ int main(int argc, char** argv) {
   cmp->add_option("--row", cmp_row, "print the illumination curve of this row (eq. 6.3) as CSV");
 
   cmp->add_option("--worst", cmp_worst, "list the N pixels that differ most")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
@@ -521,3 +554,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace

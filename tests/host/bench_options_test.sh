@@ -42,6 +42,12 @@ out=$("$results" --scenes triangle --methods flat --size 32x16 --reps 1) ||
   { echo "FAIL: tinyphong-results --methods flat --size 32x16 refused"; fail=1; }
 grep -qE "^\| flat \|" <<<"$out" && grep -qE "^\| gouraud \|" <<<"$out" ||
   { echo "FAIL: tinyphong-results' table lacks flat's or Gouraud's row: '$out'"; fail=1; }
+# Found by review, 2026-12-07: no scene printed the header alone with exit 0, and a scene or
+# method named twice printed its rows twice. Now refused, and each is shown once.
+exits 2 "--scenes: no scene named in ','" "$results" --scenes , --methods flat --reps 1
+out=$("$results" --scenes triangle,triangle --methods flat,flat --size 32x16 --reps 1)
+[ "$(grep -cE "^\| flat \|" <<<"$out")" = 1 ] ||
+  { echo "FAIL: tinyphong-results ran a scene or method named twice twice: '$out'"; fail=1; }
 
 [ $fail -eq 0 ] && echo "bench option checks: all as expected"
 exit $fail

@@ -84,6 +84,21 @@ exits 2 "--size" render "$tri" --size 0x5 -o "$work/out.png"
 exits 2 "--size: expected WIDTHxHEIGHT" record "$tri" --size 5x0 -o "$work/out.tpcmd"
 exits 2 "--methods: unknown shading method 'bogus'" stress --cases ab-min --methods flat,bogus
 exits 3 "/dev/full: cannot write" stress --cases ab-min --methods flat --json /dev/full
+# Standard output that cannot be written is an error, exit 1 (3 for stress, whose 1 is a result
+# out of bounds): a report redirected to a full disk was lost with exit 0 (found by review,
+# 2026-12-07). And compare's --worst names its range in whole numbers.
+for cmd in methods "stress --cases ab-min --methods flat" "memory"; do
+  want=1
+  [ "${cmd%% *}" = stress ] && want=3
+  status=0
+  out=$("$tp" $cmd 2>&1 >/dev/full) || status=$?
+  if [ "$status" != "$want" ] || ! grep -qF "tinyphong: standard output: cannot write" <<<"$out"; then
+    echo "FAIL: $cmd > /dev/full: status $status (want $want), '$out'"; fail=1
+  else
+    echo "ok: $cmd > /dev/full: status $status"
+  fi
+done
+exits 2 "--worst: Value -1 not in range 0 to 2147483647" compare "$work/ok.png" "$work/ok.png" --worst -1
 # A method named twice runs once (it ran twice, every row doubled; found by review, 2026-12-07).
 twice=$("$tp" stress --cases ab-min --methods flat,flat 2>&1 || true)
 grep -q "^1 result, " <<<"$twice" || { echo "FAIL: stress --methods flat,flat: '$twice'"; fail=1; }

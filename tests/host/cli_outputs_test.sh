@@ -221,6 +221,14 @@ cmp -s -n "$(stat -c %s new.tpcmd)" piped.out new.tpcmd && grep -aq "words -> /d
   [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
 "$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||
   { echo "FAIL: compare --diff to a new file"; fail=1; }
+# compare --worst N lists the start of the longer lists: ties in row order, then column (a
+# partial sort left them in any order; found by review, 2026-12-07).
+worst() { "$tp" compare a.png b.png --worst "$1" | sed -n '/^worst pixels/,$p' | tail -n +2; }
+if [ "$(worst 5)" != "$(worst 100000 | head -n 5)" ] || [ "$(worst 5 | wc -l)" != 5 ]; then
+  echo "FAIL: compare --worst 5 is not the start of --worst 100000"; fail=1
+else
+  echo "ok: compare --worst 5 is the start of --worst 100000"
+fi
 # A --row outside the images is refused before anything is written: the old tool wrote the
 # difference image over the file and then refused the row (found by review, 2026-12-07).
 echo precious > keep.png

@@ -329,3 +329,25 @@ TEST(HostileScene, AnglesThatRoundToOneAreRefusedNamingB) {
   EXPECT_NO_THROW(device.set_scene(
       parse_scene(with_ab("0.5", "1.5707963267948966"), "ab.json", TP_HOST_TEST_DATA)));
 }
+
+// Found by review, 2026-12-07: the host converted coordinates to Q15.16 (|v| < 2^15), and the
+// device, whose bound is 2^14, refused a mesh vertex at 30,000 units naming only
+// "upload_vertices at word 235". The host names the vertex and the device's range.
+TEST(HostileScene, CoordinatesBeyondTheDevicesRangeAreNamed) {
+  const std::filesystem::path dir = ::testing::TempDir();
+  std::ofstream(dir / "far.obj") << "v 0 0 0\nv 30000 0 0\nv 0 1 0\nf 1 2 3\n";
+  DeviceRenderer device(64, 64);
+  try {
+    device.set_scene(parse_scene(
+        "{\"meshes\": [{\"obj\": \"far.obj\"}], \"lights\": [],"
+        " \"camera\": {\"type\": \"orthographic\", \"extents\": [-10000, 10000, -10000, 10000]}}",
+        "far.json", dir.string()));
+    ADD_FAILURE() << "the scene was taken";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh 0 vertex 1.x = 30000 does not fit the device's "
+                                         "coordinates (Q15.16, |v| < 2^14)"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(dir / "far.obj");
+}
