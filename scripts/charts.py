@@ -182,21 +182,28 @@ def svg_chart(points, key, title, ylabel, higher_is_better, width=760, height=48
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap = argparse.ArgumentParser(description=' '.join(__doc__.split('\n\n')[0].split()))
     ap.add_argument('tables', help="tinyphong-results' Markdown output")
     ap.add_argument('--title', required=True)
     ap.add_argument('--out-prefix', required=True)
     ap.add_argument('--drop-noskip', action='store_true')
     a = ap.parse_args()
-    order, rows = read_tables(a.tables)
+    try:
+        order, rows = read_tables(a.tables)
+    except OSError as e:
+        sys.exit(f'charts.py: {a.tables}: {e.strerror}')
     points = aggregate(order, rows, a.drop_noskip)
     if len(points) < 2 or not any(p['method'] == 'gouraud' for p in points):
         sys.exit(f'{a.tables}: no method table with Gouraud found')
     for key, suffix, ylabel, higher in (
             ('correctness', 'correctness', 'colour correctness (mean over the scenes)', True),
             ('max_error', 'max-error', 'max |error| in levels (worst scene)', False)):
-        with open(f'{a.out_prefix}-{suffix}.svg', 'w', encoding='utf-8') as f:
-            f.write(svg_chart(points, key, f'{a.title}: {ylabel} against run time', ylabel, higher))
+        out = f'{a.out_prefix}-{suffix}.svg'
+        try:
+            with open(out, 'w', encoding='utf-8') as f:
+                f.write(svg_chart(points, key, f'{a.title}: {ylabel} against run time', ylabel, higher))
+        except OSError as e:
+            sys.exit(f'charts.py: {out}: {e.strerror}')
         print(f'wrote {a.out_prefix}-{suffix}.svg ({len(points)} methods)')
 
 

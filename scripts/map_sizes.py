@@ -83,7 +83,15 @@ def flash_bytes(totals):
 
 
 if __name__ == "__main__":
-    totals = sizes(sys.argv[1])
+    if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
+        sys.exit("usage: python3 scripts/map_sizes.py IMAGE.map (a GNU ld link map)")
+    try:
+        totals = sizes(sys.argv[1])
+    except (OSError, UnicodeDecodeError) as e:  # a missing, unreadable or binary file
+        sys.exit("map_sizes.py: %s: %s" % (sys.argv[1], e.strerror if isinstance(e, OSError) else e))
+    if not any(totals.values()):
+        sys.exit("map_sizes.py: %s: no input sections of .vectors, .text or .rodata (not a link map?)"
+                 % sys.argv[1])
     for (section, origin), size in sorted(totals.items()):
         if size:
             print("%-8s %-36s %8d" % (section, origin, size))

@@ -178,12 +178,19 @@ def greedy(functions, shares, budget):
     return chosen
 
 
+def positive(text):
+    """A whole number >= 1 (argparse's type: --jobs 0 ran the recording first, then failed)."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError("a whole number >= 1, got '%s'" % text)
+    return int(text)
+
+
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(description=" ".join(__doc__.split("\n\n")[0].split()))
     ap.add_argument("--build", default=os.path.join(ROOT, "build/release"))
     ap.add_argument("--methods")
     ap.add_argument("--scenes", default=SCENES)
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--jobs", type=positive, default=2)
     ap.add_argument("--top", type=int, default=0)
     ap.add_argument("--qemu", default="qemu-system-arm")
     args = ap.parse_args()
@@ -203,8 +210,10 @@ def main():
         for method in methods:
             for scene in args.scenes.split(","):
                 path = os.path.join(tmp, "%s.%s.tpcmd" % (method, scene))
-                subprocess.run([cli, "record", os.path.join(ROOT, "scenes", scene + ".json"), "--method", method,
-                                "--size", "160x120", "-o", path], check=True, stdout=subprocess.DEVNULL)
+                if subprocess.run([cli, "record", os.path.join(ROOT, "scenes", scene + ".json"), "--method",
+                                   method, "--size", "160x120", "-o", path], stdout=subprocess.DEVNULL).returncode:
+                    sys.exit("target-code-heat.py: tinyphong record refused scene %s, method %s (above)"
+                             % (scene, method))
                 streams.append(path)
         hashes = [subprocess.run([cli, "replay", "--hash", stream], check=True, capture_output=True,
                                  text=True).stdout.split()[0] for stream in streams]

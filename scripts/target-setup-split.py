@@ -121,7 +121,7 @@ def reached(roots, edges):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(description=" ".join(__doc__.split("\n\n")[0].split()))
     parser.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
     parser.add_argument("--top", type=int, default=0)
     parser.add_argument("--list", action="store_true")
