@@ -21,8 +21,16 @@ using fx::q2_29;
 
 // Device-side errors are reported as scene errors so that every caller (CLI, server) has one
 // error type to show: the scene file, no line (the problem is in the combination), the what.
-[[noreturn]] void reject(const Scene& scene, const std::string& path, const std::string& problem) {
+[[noreturn]] void reject(const Scene& scene, const std::string& path, std::string problem) {
+  while (!problem.empty() && problem.back() == '\n') problem.pop_back();  // (a report's last line)
   throw SceneError(scene.file.empty() ? "<scene>" : scene.file, 0, path, problem);
+}
+
+// "rotation 45 degrees", for a frame refused at a turn of the model.
+std::string at_rotation(double radians) {
+  char degrees[32];
+  std::snprintf(degrees, sizeof degrees, "%.6g", radians * 180.0 / std::numbers::pi);
+  return std::string("rotation ") + degrees + " degrees";
 }
 
 fw::Vec3u unit_vector(const glm::dvec3& v, const std::string& what, ConversionReport& report) {
@@ -308,10 +316,7 @@ void DeviceRenderer::set_scene(const Scene& scene) {
 // The scene is checked unrotated (set_scene); a turn can take a vertex out of the device's range
 // (a draw's only refusal once its indices are in range), which the device finds per frame.
 void DeviceRenderer::refused_frame(const StreamError& e, double rotation) const {
-  char degrees[32];
-  std::snprintf(degrees, sizeof degrees, "%.6g", rotation * 180.0 / std::numbers::pi);
-  std::string why =
-      std::string("the device refused the frame at rotation ") + degrees + " degrees: " + e.what();
+  std::string why = "the device refused the frame at " + at_rotation(rotation) + ": " + e.what();
   if (e.opcode == static_cast<std::uint32_t>(fw::Opcode::kDraw) &&
       e.error == fw::Error::kOutOfRange)
     why +=
@@ -325,7 +330,10 @@ fw::Mat4 DeviceRenderer::modelview_for(const Scene& scene, const MeshRange& mesh
   ConversionReport report;
   const glm::dmat4 mv = view_matrix(scene.camera) * rotation_about_y(rotation) * mesh.model;
   fw::Mat4 m = to_device_matrix(mv, "model-view", report);
-  if (!report.ok()) reject(scene, "", report.to_string());
+  if (!report.ok())
+    reject(scene, "",
+           "the model-view at " + at_rotation(rotation) +
+               " does not fit the device: " + report.to_string());
   return m;
 }
 

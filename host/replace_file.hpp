@@ -146,7 +146,8 @@ inline bool replace_unnamed(const std::string& path, const std::string& file,
 // is replaced so; the link stays a link. Written in place instead, without the guarantee: a
 // device, a pipe or an open descriptor (/dev/stdout), a new file at the end of a link, and a
 // writable file in a folder where no new file can be made. A file the user may not write is
-// refused, as opening it would be.
+// refused, as opening it would be, and so is another user's file in a sticky folder (/tmp), which
+// the kernel lets no one else rename over.
 inline void replace_file(const std::string& path, std::span<const std::byte> bytes) {
   struct stat old {};
   const bool exists = ::stat(path.c_str(), &old) == 0;  // through links, as the kernel follows them

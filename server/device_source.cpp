@@ -37,14 +37,21 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
   return s;
 }
 
-// What a client is told of a problem: a scene's (or its mesh's) file by its name alone, not where
-// the server keeps it, then the line, the JSON pointer and the problem.
-std::string client_text(const std::exception& e) {
+// What a client is told of a problem: a scene's file by its name alone, not where the server
+// keeps it, then the line, the JSON pointer and the problem, in which a mesh's file is named
+// from the scenes folder (`dir`) too.
+std::string client_text(const std::exception& e, const std::filesystem::path& dir) {
   const auto* scene = dynamic_cast<const host::SceneError*>(&e);
-  if (scene == nullptr) return e.what();
-  return std::filesystem::path(scene->file()).filename().string() +
-         (scene->line() > 0 ? ":" + std::to_string(scene->line()) : std::string()) + ": " +
-         (scene->path().empty() ? std::string() : scene->path() + ": ") + scene->problem();
+  std::string text =
+      scene == nullptr
+          ? std::string(e.what())
+          : std::filesystem::path(scene->file()).filename().string() +
+                (scene->line() > 0 ? ":" + std::to_string(scene->line()) : std::string()) + ": " +
+                (scene->path().empty() ? std::string() : scene->path() + ": ") + scene->problem();
+  const std::string prefix = (dir / "").string();
+  for (std::size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
+    text.erase(at, prefix.size());
+  return text;
 }
 
 host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
@@ -112,7 +119,7 @@ Result DeviceSource::install(host::Scene sc, const std::string& name, bool specu
     host::method_from_name(shown.method);  // names the valid choices if not one
     renderer_.set_scene(shown);            // on failure the device keeps the previous scene
   } catch (const std::exception& e) {
-    return Result::failure(client_text(e));
+    return Result::failure(client_text(e, dir_));
   }
   settings_ = to_settings(sc, name);
   settings_.specular_only = specular_only;
@@ -137,7 +144,7 @@ Result DeviceSource::load_scene(const std::string& name) {
     sc.budget = settings_.budget;
     return install(std::move(sc), name, settings_.specular_only);
   } catch (const std::exception& e) {
-    return Result::failure(client_text(e));
+    return Result::failure(client_text(e, dir_));
   }
 }
 
@@ -146,7 +153,7 @@ RenderedFrame DeviceSource::render(double rotation) {
   try {
     d = renderer_.render(rotation);
   } catch (const host::SceneError& e) {  // a frame the device refuses (host::DeviceRenderer)
-    throw std::runtime_error(client_text(e));
+    throw std::runtime_error(client_text(e, dir_));
   }
   RenderedFrame f;
   f.image.width = d.width;

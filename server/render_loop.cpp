@@ -281,6 +281,12 @@ void RenderLoop::render_and_publish(double rotation) {
     refused_ = e.what();
     return;
   }
+  bool was_refused = false;
+  {
+    std::lock_guard lk(m_);
+    was_refused = refused_.has_value();
+    refused_.reset();  // before offer_reference below reads it
+  }
   const Image& img = f.image;
   const auto sum = fnv1a64(img.rgb);
   bool published = false;
@@ -295,9 +301,10 @@ void RenderLoop::render_and_publish(double rotation) {
     last_ = LastFrame{rotation, id, img};
     if (flags_.reference) offer_reference();
     published = true;
+  } else if (was_refused && flags_.reference) {
+    offer_reference();  // one held back while the frames were refused (offer_reference)
   }
   std::lock_guard lk(m_);
-  refused_.reset();
   ++frames_rendered_;
   render_ms_ = f.render_ms;
   counters_ = std::move(f.counters);
@@ -362,6 +369,13 @@ void RenderLoop::run() {
 
 void RenderLoop::offer_reference() {
   if (!last_) return;
+  {
+    // While the device refuses the frames, the frame on screen (last_) may be another scene's
+    // (a set_scene the device then refused to draw): a reference of the current scene would be
+    // paired with it. The next frame that renders offers one.
+    std::lock_guard lk(m_);
+    if (refused_) return;
+  }
   {
     std::lock_guard lk(rm_);
     // Latest only: an unstarted older job is replaced. The task snapshots the scene here, on

@@ -1,5 +1,7 @@
 #include "server/server.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include <boost/asio/signal_set.hpp>
@@ -40,7 +42,13 @@ struct Server::Impl {
     addr = net::ip::make_address(opt.bind, ec);
     if (ec)  // asio's own message was "Invalid argument", naming nothing
       throw std::runtime_error("--bind " + opt.bind + ": not an IP address (e.g. 127.0.0.1, ::1)");
-    listener = std::make_shared<Listener>(ioc, net::ip::tcp::endpoint{addr, opt.port}, ctx);
+    try {
+      listener = std::make_shared<Listener>(ioc, net::ip::tcp::endpoint{addr, opt.port}, ctx);
+    } catch (
+        const boost::system::system_error& e) {  // said "bind: Cannot assign requested address"
+      throw std::runtime_error("--bind " + opt.bind + " --port " + std::to_string(opt.port) +
+                               ": cannot listen: " + e.code().message());
+    }
     ctx.policy.port = listener->port();
     ctx.policy.names = {"127.0.0.1", "localhost", "[::1]"};
     if (!addr.is_unspecified()) ctx.policy.names.push_back(url_host(addr));

@@ -1,5 +1,7 @@
 #include "server/ws_session.hpp"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "server/fail.hpp"
@@ -52,7 +54,9 @@ void WsSession::do_read() {
 
 void WsSession::resume_reading() {
   if (reading_ || !open_ || closing_) return;
-  if (text_q_.size() + awaiting_ >= limits_.max_text_queue / 2) return;  // on_write resumes
+  // Queued text of any kind counts (a reply, a state, statistics): each leaves only by a write,
+  // and on_write resumes. At least one, so that a queue of one still reads.
+  if (text_q_.size() + awaiting_ >= std::max<std::size_t>(1, limits_.max_text_queue / 2)) return;
   do_read();
 }
 

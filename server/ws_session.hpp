@@ -48,9 +48,9 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void on_accept(beast::error_code ec);
   void do_read();
   void on_read(beast::error_code ec, std::size_t n);
-  // Reads the next message unless a read is pending or the client is owed half a text queue of
-  // replies (queued, or still with the render loop): a client that sends faster than its replies
-  // can be written waits for them instead of overflowing its queue.
+  // Reads the next message unless a read is pending or the client has half a text queue waiting
+  // for it: queued messages of any kind, and replies still with the render loop. A client that
+  // sends faster than its replies can be written waits for them instead of overflowing its queue.
   void resume_reading();
   void handle_text(const std::string& text);
   void handle_ack(const Command& c);

@@ -59,6 +59,20 @@ for cmd in render record reference; do
 done
 "$tp" render "$work/slab.json" --size 64x64 -o "$work/ok.png" >/dev/null ||
   { echo "FAIL: the slab unturned refused"; fail=1; }
+# A model-view entry beyond the device's 2^14 at one rotation: 10,000 units out on x, seen from
+# 10,000 units away on z, is 20,000 deep turned 90 degrees. Named with the rotation, as the host
+# checks it before the device would.
+printf 'v 0 1 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n' > "$work/tri.obj"
+cat > "$work/orbit.json" <<'JSON'
+{"camera": {"type": "perspective", "position": [0, 0, 10000], "target": [0, 0, 0], "fov_y": 60,
+            "near": 1, "far": 10000},
+ "lights": [{"type": "directional", "direction": [0, 0, 1]}],
+ "meshes": [{"obj": "tri.obj", "transform": {"translate": [10000, 0, 0]}}], "cull": false}
+JSON
+refused "orbit.json: the model-view at rotation 90 degrees does not fit the device: model-view[3][2]" \
+  render "$work/orbit.json" --size 64x48 --rotate 90
+"$tp" render "$work/orbit.json" --size 64x48 -o "$work/ok.png" >/dev/null ||
+  { echo "FAIL: the orbit unturned refused"; fail=1; }
 
 # exits STATUS TEXT ARGS...: the command must exit with STATUS and print TEXT (found by review,
 # 2026-12-06: CLI11's own codes came through, 104 to 114, and stress took -1, 2^64, "" and 0x10

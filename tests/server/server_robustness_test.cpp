@@ -455,6 +455,12 @@ TEST(ServerRobustness, AFrameTheDeviceRefusesIsReportedAndServingContinues) {
       ::testing::TempDir() + "tp_server_refused_" + std::to_string(getpid());
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "tri.obj") << "v 0 4 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
+  std::ofstream(dir / "broken.obj") << "v 0 4 0\nv 1 0 0\nf 1 2 9\n";
+  std::ofstream(dir / "broken.json") << json{
+      {"meshes", {{{"obj", "broken.obj"}}}},
+      {"lights", json::array()},
+      {"camera",
+       {{"type", "orthographic"}}}}.dump();
   for (const auto& [name, scale] : {std::pair{"fine", 1}, std::pair{"tower", 10000}})
     std::ofstream(dir / (std::string(name) + ".json")) << json{
         {"name", name},
@@ -485,11 +491,17 @@ TEST(ServerRobustness, AFrameTheDeviceRefusesIsReportedAndServingContinues) {
   EXPECT_NE(why.find("outside the device's range"), std::string::npos) << why;
   EXPECT_EQ(why.find(dir.string()), std::string::npos) << why;  // not where the server keeps it
   EXPECT_TRUE(srv.running());
+  // While the frames are refused, the frame on screen is the other scene's: no reference is
+  // paired with it (a review found the tower's reference published under the fine scene's frame).
+  c.send_json({{"type", "reference"}, {"on", true}});
+  ASSERT_TRUE(c.read_json("ok", 10s).is_object());
+  EXPECT_EQ(count_frames(c, 1500ms).reference, 0);
   // Still serving: the state, and the next scene renders and clears the report.
   c.send_json({{"type", "get_state"}});
   EXPECT_EQ(c.read_json("state", 10s)["scene"], "tower");
   c.send_json({{"type", "set_scene"}, {"name", "fine"}});
   ASSERT_TRUE(c.read_json("ok", 10s).is_object());
+  EXPECT_GE(count_frames(c, 10s, true).reference, 1);  // and now the reference comes
   bool cleared = false;
   for (int i = 0; i < 40 && !cleared; ++i) {
     const json st = c.read_json("stats", 10s);
@@ -497,6 +509,13 @@ TEST(ServerRobustness, AFrameTheDeviceRefusesIsReportedAndServingContinues) {
     cleared = !st.contains("refused");
   }
   EXPECT_TRUE(cleared);
+  // A mesh's problem names the mesh's file from the scenes folder, not where the server keeps it.
+  c.send_json({{"type", "set_scene"}, {"name", "broken"}});
+  const json bad = c.read_json("error", 10s);
+  ASSERT_TRUE(bad.is_object());
+  const std::string text = bad["error"].get<std::string>();
+  EXPECT_NE(text.find("broken.obj:3: face refers to vertex 9"), std::string::npos) << text;
+  EXPECT_EQ(text.find(dir.string()), std::string::npos) << text;
   EXPECT_TRUE(srv.running());
   std::filesystem::remove_all(dir);
 }
