@@ -45,7 +45,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     check_scene(tp::host::parse_scene(text, "fuzz.json", TP_FUZZ_DATA));
   } catch (const tp::host::SceneError& e) {
-    const auto lines = 1 + std::count(text.begin(), text.end(), '\n');
+    // Lines end at LF, CRLF or a lone CR, as the reader counts them (host/scene.hpp).
+    const int lines = tp::host::line_of_offset(text, text.size());
     TP_FUZZ_CHECK(e.file() == "fuzz.json", "the error names the file");
     TP_FUZZ_CHECK(e.line() >= 0 && e.line() <= lines, "the error's line is in the file");
     TP_FUZZ_CHECK(!e.problem().empty(), "the error says what is wrong");
