@@ -37,17 +37,10 @@ ViewSettings to_settings(const host::Scene& sc, const std::string& name) {
   return s;
 }
 
-// What a client is told of a problem: a scene's file by its name alone, not where the server
-// keeps it, then the line, the JSON pointer and the problem, in which a mesh's file is named
-// from the scenes folder (`dir`) too.
+// What a client is told of a problem: files named from the scenes folder `dir`, not by where
+// the server keeps them (a SceneError's text names the scene's file, and a mesh's within it).
 std::string client_text(const std::exception& e, const std::filesystem::path& dir) {
-  const auto* scene = dynamic_cast<const host::SceneError*>(&e);
-  std::string text =
-      scene == nullptr
-          ? std::string(e.what())
-          : std::filesystem::path(scene->file()).filename().string() +
-                (scene->line() > 0 ? ":" + std::to_string(scene->line()) : std::string()) + ": " +
-                (scene->path().empty() ? std::string() : scene->path() + ": ") + scene->problem();
+  std::string text = e.what();
   const std::string prefix = (dir / "").string();
   for (std::size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
     text.erase(at, prefix.size());
