@@ -150,8 +150,9 @@ class KbAdaptiveMethod final : public ShadingMethod {
   void choose_cheap_path(std::int64_t err0);
   int peak_level(const Cell& c, std::uint32_t& peaks);
   void add_leaf(const Cell& c, bool quadratic, const std::int64_t nl_error[], bool checked);
-  Cell cell_at(int level, std::int64_t e1, std::int64_t e2) const;
-  std::int64_t pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const;
+  Cell finest_cell(std::int64_t s, std::int64_t t) const;
+  std::int64_t pixels_in(const Cell& c, std::int64_t s, std::int64_t t, std::int64_t ds,
+                         std::int64_t dt) const;
   void shade_exact(std::int32_t y, std::int32_t xa, std::int32_t n, Rgb8* out) const;
   // n exact evaluations (pixels or samples), counted as counters.hpp defines them.
   void count_exact(std::int64_t n) const {
@@ -159,7 +160,7 @@ class KbAdaptiveMethod final : public ShadingMethod {
     counters_->specular_evaluations +=
         static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(point_.lights());
   }
-  void shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2, std::int32_t n,
+  void shade_cell(const Leaf& leaf, std::int64_t s, std::int64_t t, std::int32_t n,
                   Rgb8* out) const;
   void shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2, Rgb8* out) const;
   void fill_quadratic(const SteppedQuadratic q[3], bool in_range, std::int64_t u, std::int64_t v,

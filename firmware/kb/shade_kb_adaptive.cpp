@@ -33,7 +33,8 @@ namespace {
 std::int64_t abs64(std::int64_t v) { return v < 0 ? -v : v; }
 
 // Pixels until q (now in [lo, hi)) leaves that interval when it moves by dq per pixel.
-std::int64_t steps_inside(std::int64_t q, std::int64_t dq, std::int64_t lo, std::int64_t hi) {
+TP_PIXEL_INLINE inline std::int64_t steps_inside(std::int64_t q, std::int64_t dq, std::int64_t lo,
+                                                 std::int64_t hi) {
   constexpr std::int64_t kForever = std::int64_t{1} << 40;
   if (dq > 0) return ceil_div(hi - q, dq);
   if (dq < 0) return floor_div(q - lo, -dq) + 1;
@@ -629,26 +630,24 @@ void KbAdaptiveMethod::fill_quadratic(const SteppedQuadratic q[3], bool in_range
   }
 }
 
-// The cell of `level` that holds the point with edge weights e1, e2 (λ1 = e1 / area2, …):
-// i <= s < i + 1, j <= t < j + 1 for s = 2^level·λ1, t = 2^level·λ2, "up" below the diagonal
-// s + t = i + j + 1. Points on the triangle's own edges are clamped into it.
-KbAdaptiveMethod::Cell KbAdaptiveMethod::cell_at(int level, std::int64_t e1,
-                                                 std::int64_t e2) const {
-  const std::int64_t area = tri_->area2, cells = std::int64_t{1} << level;
-  const std::int64_t s = e1 * (std::int64_t{1} << level), t = e2 * (std::int64_t{1} << level);
+// The deepest-level cell that holds the point (s, t) = 2^kMaxLevel·(e1, e2) (λ1 = e1 / area2, …):
+// i <= s / area2 < i + 1, j <= t / area2 < j + 1, "up" below the diagonal s + t = (i + j +
+// 1)·area2. Points on the triangle's own edges are clamped into it.
+TP_PIXEL_INLINE inline KbAdaptiveMethod::Cell KbAdaptiveMethod::finest_cell(std::int64_t s,
+                                                                            std::int64_t t) const {
+  const std::int64_t area = tri_->area2, cells = std::int64_t{1} << kMaxLevel;
   std::int64_t i = floor_div(s, area), j = floor_div(t, area);
   i = i < 0 ? 0 : (i > cells - 1 ? cells - 1 : i);
   j = j < 0 ? 0 : (j > cells - 1 - i ? cells - 1 - i : j);
   const bool up = s + t < (i + j + 1) * area || i + j == cells - 1;
-  return Cell{level, static_cast<int>(i), static_cast<int>(j), up};
+  return Cell{kMaxLevel, static_cast<int>(i), static_cast<int>(j), up};
 }
 
-// Pixels until the point (e1, e2), stepping by (de1_, de2_), leaves cell c.
-std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t e1, std::int64_t e2) const {
+// Pixels until the point (s, t), in units of cell c's level and stepping by (ds, dt), leaves c.
+TP_PIXEL_INLINE inline std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t s,
+                                                                std::int64_t t, std::int64_t ds,
+                                                                std::int64_t dt) const {
   const std::int64_t area = tri_->area2;
-  const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
-  const std::int64_t ds = de1_ * (std::int64_t{1} << c.level),
-                     dt = de2_ * (std::int64_t{1} << c.level);
   std::int64_t len = steps_inside(s, ds, c.i * area, (c.i + 1) * area);
   const std::int64_t lt = steps_inside(t, dt, c.j * area, (c.j + 1) * area);
   len = lt < len ? lt : len;
@@ -664,13 +663,13 @@ std::int64_t KbAdaptiveMethod::pixels_in(const Cell& c, std::int64_t e1, std::in
   return len < 1 ? 1 : len;
 }
 
-// Pixels [xa, xa + n) of row y inside cell c, from edge weights (e1, e2) at xa: the cell's
-// quadratic, seeded once and forward-differenced.
-void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t e1, std::int64_t e2,
-                                  std::int32_t n, Rgb8* out) const {
+// Pixels [xa, xa + n) of row y inside cell c, from the point (s, t) at xa in units of c's level:
+// the cell's quadratic, seeded once and forward-differenced.
+TP_PIXEL_INLINE inline void KbAdaptiveMethod::shade_cell(const Leaf& leaf, std::int64_t s,
+                                                         std::int64_t t, std::int32_t n,
+                                                         Rgb8* out) const {
   const Cell& c = leaf.cell;
   const std::int64_t area = tri_->area2;
-  const std::int64_t s = e1 * (std::int64_t{1} << c.level), t = e2 * (std::int64_t{1} << c.level);
   const std::int64_t nu = c.up ? s - c.i * area : (c.i + 1) * area - s;
   const std::int64_t nv = c.up ? t - c.j * area : (c.j + 1) * area - t;
   const std::int64_t u = local_of(nu), v = local_of(nv);
@@ -809,7 +808,7 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
     if (leaves_[0].exact)
       shade_exact(s.y, s.first, s.last - s.first, out + (s.first - s.x0));
     else
-      shade_cell(leaves_[0], e1, e2, n, out);
+      shade_cell(leaves_[0], e1, e2, n, out);  // level 0: (s, t) = (e1, e2)
     return;
   }
   shade_pieces(s, e1, e2, out);
@@ -817,14 +816,21 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
 
 // Subdivided: each piece of the span lies in one leaf cell (found through the deepest level's
 // map of leaves), shaded by that cell's quadratic or, over budget at the deepest level, exactly.
+// The point is walked in units of the deepest level's cells; a leaf of level l reads it in units
+// of its own as (s, t) / 2^(kMaxLevel − l), an exact shift: s = 2^kMaxLevel·e1.
 void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2,
                                     Rgb8* out) const {
   const std::int32_t n = s.last - s.x0;  // the pieces after the last visible pixel are left out
   const std::int32_t first = s.first - s.x0;
+  constexpr std::int64_t kCells = std::int64_t{1} << kMaxLevel;
+  std::int64_t fs = e1 * kCells, ft = e2 * kCells;
+  const std::int64_t fds = de1_ * kCells, fdt = de2_ * kCells;
   for (std::int32_t x = 0; x < n;) {
-    const Cell finest = cell_at(kMaxLevel, e1, e2);
+    const Cell finest = finest_cell(fs, ft);
     const Leaf& leaf = leaves_[(finest.up ? leaf_up_ : leaf_down_)[finest.j][finest.i]];
-    std::int64_t len = pixels_in(leaf.cell, e1, e2);
+    const int coarser = kMaxLevel - leaf.cell.level;
+    const std::int64_t ls = fs >> coarser, lt = ft >> coarser;
+    std::int64_t len = pixels_in(leaf.cell, ls, lt, fds >> coarser, fdt >> coarser);
     if (len > s.x1 - s.x0 - x) len = s.x1 - s.x0 - x;
     const auto run = static_cast<std::int32_t>(len);
     if (x + run <= first) {
@@ -833,10 +839,10 @@ void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t
       const std::int32_t a = x > first ? x : first, b = x + run < n ? x + run : n;
       shade_exact(s.y, s.x0 + a, b - a, out + a);
     } else {
-      shade_cell(leaf, e1, e2, run, out + x);  // whole: its seed depends on its bounds
+      shade_cell(leaf, ls, lt, run, out + x);  // whole: its seed depends on its bounds
     }
-    e1 += len * de1_;
-    e2 += len * de2_;
+    fs += len * fds;
+    ft += len * fdt;
     x += run;
   }
 }
