@@ -820,8 +820,10 @@ void KbAdaptiveMethod::shade_span(const Span& s, Rgb8* out) {
 // of its own as (s, t) / 2^(kMaxLevel − l), an exact shift: s = 2^kMaxLevel·e1.
 void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t e2,
                                     Rgb8* out) const {
+  // The span's bounds in locals: a field of `s` read after a piece is shaded (a call, and bytes
+  // written through `out`, either of which may change any memory) would be read again.
   const std::int32_t n = s.last - s.x0;  // the pieces after the last visible pixel are left out
-  const std::int32_t first = s.first - s.x0;
+  const std::int32_t first = s.first - s.x0, width = s.x1 - s.x0;
   constexpr std::int64_t kCells = std::int64_t{1} << kMaxLevel;
   std::int64_t fs = e1 * kCells, ft = e2 * kCells;
   const std::int64_t fds = de1_ * kCells, fdt = de2_ * kCells;
@@ -831,7 +833,7 @@ void KbAdaptiveMethod::shade_pieces(const Span& s, std::int64_t e1, std::int64_t
     const int coarser = kMaxLevel - leaf.cell.level;
     const std::int64_t ls = fs >> coarser, lt = ft >> coarser;
     std::int64_t len = pixels_in(leaf.cell, ls, lt, fds >> coarser, fdt >> coarser);
-    if (len > s.x1 - s.x0 - x) len = s.x1 - s.x0 - x;
+    if (len > width - x) len = width - x;
     const auto run = static_cast<std::int32_t>(len);
     if (x + run <= first) {
       // Wholly hidden: nothing to shade.
