@@ -16,7 +16,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -32,14 +31,6 @@
 namespace {
 
 using namespace tp::host;
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -126,13 +117,11 @@ void print_scene(const std::string& name, const std::optional<Size>& resolution,
 int main(int argc, char** argv) {
   CLI::App app{"tinyphong results: error and time ratio per scene and method"};
   std::string scenes_arg = "sphere-32,sphere-40,sphere-512,dodecahedron-30,triangle,teapot";
-  std::vector<std::string> methods;
-  std::string size, peer;
+  std::string methods_arg, size, peer;
   int reps = 7;
   app.add_option("--scenes", scenes_arg, "comma-separated scene names from scenes/");
-  app.add_option("--methods", methods, "comma-separated methods (default: all)")
-      ->delimiter(',')
-      ->check(method_check());
+  app.add_option("--methods", methods_arg, "comma-separated methods (default: all)")
+      ->check(method_list_check());
   app.add_option("--reps", reps, "timing rounds per method (median taken)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
@@ -142,12 +131,12 @@ int main(int argc, char** argv) {
   // (SIGABRT), the method blamed on a scene file's line 0.
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   const std::optional<Size> resolution = parse_size(size);  // none without --size
-  const std::vector<std::string> scenes = each_once(split(scenes_arg));
+  const std::vector<std::string> scenes = list_items(scenes_arg);
   if (scenes.empty()) {  // printed the header alone and exited 0
     std::cerr << "--scenes: no scene named in '" << scenes_arg << "'\n";
     return 2;
   }
-  methods = each_once(methods);
+  std::vector<std::string> methods = list_items(methods_arg);
   if (methods.empty())
     for (const auto& m : method_names()) methods.emplace_back(m.name);
   if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())

@@ -89,9 +89,10 @@ void add_stress_command(CLI::App& app, StressCli& cli) {
       "numerical stress suite: every method against the double reference on hard cases, "
       "with a verdict against its documented bound (docs/STABILITY.md)");
   cmd->add_flag("--quick", cli.options.quick, "only the quick subset (what the CTest runs)");
-  cmd->add_option("--methods", cli.options.methods, "comma-separated methods (default: all)")
-      ->delimiter(',')
-      ->check(method_check());
+  cmd->add_option_function<std::string>(
+         "--methods", [&cli](const std::string& text) { cli.options.methods = list_items(text); },
+         "comma-separated methods (default: all)")
+      ->check(method_list_check());
   cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
   cmd->add_option("--seed", cli.options.seed,
                   "seed of the cases' random parts (the bounds are the default seed's)")

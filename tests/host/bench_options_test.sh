@@ -28,6 +28,7 @@ for size in 4294967360x64 10x20junk 0x10 4097x10 x; do
 done
 exits 2 "--method: unknown shading method 'bogus'" "$draw" "$tri" --method bogus
 exits 2 "--methods: unknown shading method 'bogus'" "$results" --methods kb,bogus
+exits 2 "--methods: no method named in ','" "$results" --methods , --reps 1
 exits 2 "--frames" "$draw" "$tri" --frames 0
 exits 2 "--reps" "$results" --reps 0
 # A scene that does not load is the program's error, not an option's: exit status 1.

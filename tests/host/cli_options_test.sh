@@ -97,6 +97,9 @@ exits 2 "--method: unknown shading method 'bogus'" record "$tri" --method bogus 
 exits 2 "--size" render "$tri" --size 0x5 -o "$work/out.png"
 exits 2 "--size: expected WIDTHxHEIGHT" record "$tri" --size 5x0 -o "$work/out.tpcmd"
 exits 2 "--methods: unknown shading method 'bogus'" stress --cases ab-min --methods flat,bogus
+# A list naming no method is refused as that, not by taking the next option for a method
+# (CLI11's delimited list did: "unknown shading method '--cases'").
+exits 2 "--methods: no method named in ','" stress --methods , --cases ab-min
 exits 3 "/dev/full: cannot write" stress --cases ab-min --methods flat --json /dev/full
 # Standard output that cannot be written is an error, exit 1 (3 for stress, whose 1 is a result
 # out of bounds): a report redirected to a full disk was lost with exit 0 (found by review,
