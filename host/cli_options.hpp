@@ -66,15 +66,11 @@ inline std::vector<std::string> list_items(const std::string& text) {
 inline CLI::Validator method_list_check() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        const std::vector<std::string> names = list_items(text);
+        std::vector<std::string> names = list_items(text);
         if (names.empty()) return "no method named in '" + text + "'";
-        for (const std::string& name : names) {
-          try {
-            (void)method_from_name(name);
-          } catch (const std::invalid_argument& e) {
-            return e.what();
-          }
-        }
+        const CLI::Validator one = method_check();  // each item as --method checks its one
+        for (std::string& name : names)
+          if (std::string why = one(name); !why.empty()) return why;
         return "";
       },
       "METHOD[,METHOD...]");
