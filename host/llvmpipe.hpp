@@ -1,5 +1,5 @@
 // Mesa's llvmpipe, through OSMesa, as the peer a desktop user would pick instead of the device
-// (docs/RESULTS.md, "The peer: Mesa llvmpipe"): the same scene — camera, meshes, lights,
+// (docs/RESULTS.md, its opening on the `llvmpipe` rows): the same scene — camera, meshes, lights,
 // material, culling, background — drawn by OpenGL 3.3 core with per-pixel float Blinn-Phong in
 // GLSL, the formula of the double reference (docs/CONVENTIONS.md, "Shared contract"): N and the
 // eye-space position interpolated perspective-correctly, N renormalised per pixel, true per-pixel

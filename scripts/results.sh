@@ -247,8 +247,11 @@ PYEOF
 The steadier cost figure: instructions executed inside \`tp::fw::Device::draw\` (all of it: the
 vertex cache, clipping, set-up, spans and pixels; the clear is outside), counted by
 callgrind for one frame of each scene, divided by the frame's pixels written (repeatable to the
-instruction on any x86-64 machine with the same compiler). \`bash scripts/instructions.sh
---methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive\`, $(date +%Y-%m-%d).
+instruction on any x86-64 machine with the same compiler):
+
+    bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive
+
+Measured $(date +%Y-%m-%d) on the machine above.
 
 EOF
     bash scripts/instructions.sh --methods flat,gouraud,phong,duff,bishop-weimer,bishop-weimer-finite,brown,gouraud-subdivided,quadratic,envmap,blinn-map,quadratic-blinn-map,kb,kb-adaptive
@@ -262,8 +265,11 @@ The device's firmware cross-compiled for the Cortex-M3 (-O2) and run under
 \`qemu-system-arm -M mps2-an385 -icount shift=0\`, which counts guest instructions: every method
 on every scene at the scenes' own resolutions, with the ratio to Gouraud, and the calls of the
 64-bit division helpers (counted; none since the firmware divides with fixedpoint/divide.hpp).
-\`bash scripts/target-cost.sh --full\`, $(date +%Y-%m-%d); docs/TARGET.md explains the
-measurement and gives the same at 160x120.
+docs/TARGET.md explains the measurement and gives the same at 160x120.
+
+    bash scripts/target-cost.sh --full
+
+Measured $(date +%Y-%m-%d); guest instruction counts are the same on any host.
 
 EOF
     bash scripts/target-cost.sh --full

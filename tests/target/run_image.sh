@@ -21,7 +21,7 @@ if [ $status -ne 0 ]; then
 fi
 grep -qx "done" <<<"$out" || { echo "FAIL: the image did not print 'done'"; fail=1; }
 # The stack's high-water mark over all the streams (the image paints its free stack first):
-# issue 12's budget for a small part is 4 KiB. Measured 1,624-3,192 bytes (docs/TARGET.md, "Stack").
+# issue 12's budget for a small part is 4 KiB. The marks measured: docs/TARGET.md, "Stack".
 stack_limit=4096
 stack=$(awk '/^stack high-water mark/ { print $4 }' <<<"$out")
 if [ -z "$stack" ]; then
