@@ -47,6 +47,19 @@ inline Vec3u halfway(const Vec3u& l, const Vec3u& e) {
                             std::int64_t{l.z.raw()} + e.z.raw());
 }
 
+// Where L and E are opposite (a light straight behind the object, seen from an eye at
+// infinity), H is undefined and halfway() gives the zero vector, as light_direction() does for a
+// point light at the point itself; N·H (N·L) is then 0, as the shared contract takes it
+// (docs/CONVENTIONS.md). Kuijk-Blake's methods, which interpolate these vectors angularly between
+// the vertices, cannot start from one: its angle reads as 0, a full highlight over the whole
+// triangle. They leave the term out of a triangle where its vector is undefined at a vertex:
+// whether one of v[0..count) is.
+TP_SIZE_OUTLINE inline bool undefined_direction(const Vec3u* v, int count) {
+  for (int i = 0; i < count; ++i)
+    if (v[i].x.raw() == 0 && v[i].y.raw() == 0 && v[i].z.raw() == 0) return true;
+  return false;
+}
+
 // A light's L and H at eye-space point p, where the eye's direction is e: the vectors Duff and
 // Bishop-Weimer hold constant over a triangle (at its centroid) and the Blinn maps take at each
 // point. Adds the unit vectors it forms to normalizations (a point light's L, and H).

@@ -1,5 +1,6 @@
 #include "host/device_renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -160,7 +161,9 @@ struct DeviceRenderer::Prepared {
 namespace {
 
 // The block for the largest frame, refused before it is allocated: a 20000 x 20000 request took
-// 2.75 GB before the device refused the viewport.
+// 2.75 GB before the device refused the viewport. Enough for each layout prepare() may set: with
+// the depth buffer; without it, with the write counts and the depth buffer's one row, which for a
+// frame one or two pixels high needs more than the depth buffer would; and a small part's frame.
 std::size_t block_bytes(int max_width, int max_height, std::uint32_t max_vertices,
                         std::uint32_t max_indices) {
   constexpr int kMax = static_cast<int>(fw::kMaxDimension);
@@ -168,10 +171,15 @@ std::size_t block_bytes(int max_width, int max_height, std::uint32_t max_vertice
     throw std::invalid_argument("viewport " + std::to_string(max_width) + "x" +
                                 std::to_string(max_height) + " beyond the device's 1.." +
                                 std::to_string(kMax) + " per side");
-  return fw::Device::memory_required(
-      fw::ViewportCmd{static_cast<std::uint32_t>(max_width), static_cast<std::uint32_t>(max_height),
-                      fw::PixelFormat::kRgb888, false},
-      fw::BufferCapacityCmd{max_vertices, max_indices});
+  const auto w = static_cast<std::uint32_t>(max_width), h = static_cast<std::uint32_t>(max_height);
+  const fw::BufferCapacityCmd capacity{max_vertices, max_indices};
+  std::size_t bytes = 0;
+  for (const fw::ViewportCmd layout :
+       {fw::ViewportCmd{w, h, fw::PixelFormat::kRgb888, /*write_count=*/false, /*depth=*/true},
+        fw::ViewportCmd{w, h, fw::PixelFormat::kRgb888, /*write_count=*/true, /*depth=*/false},
+        fw::ViewportCmd{w, h, fw::PixelFormat::kRgb565, /*write_count=*/false, /*depth=*/false}})
+    bytes = std::max(bytes, fw::Device::memory_required(layout, capacity));
+  return bytes;
 }
 
 }  // namespace

@@ -23,6 +23,9 @@ struct TwoVectorTriangle {
   EdgeArcs n;
   int lights = 0;
   TwoVectorLight light[kMaxLights];
+  // Per light, L's and H's terms: false where the vector is undefined at a vertex
+  // (firmware/lighting.hpp), and the term is left out of the triangle.
+  bool defined[kMaxLights][2];
   std::int64_t ambient[3] = {0, 0, 0};
 
   void setup(const Triangle& t, const ShadeContext& ctx) {
@@ -47,6 +50,8 @@ struct TwoVectorTriangle {
       }
       out.l.set(lv);
       out.h.set(hv);
+      defined[lights - 1][0] = !undefined_direction(lv, 3);
+      defined[lights - 1][1] = !undefined_direction(hv, 3);
       for (int c = 0; c < 3; ++c) {
         out.wd[c] = term_weight(ls.color[c], fx::mul_sat<q1_30>(m.kd, m.color[c]));
         out.ws[c] = term_weight(ls.color[c], m.ks);

@@ -54,7 +54,7 @@ inline void KbDecompositionMethod::prepare_span(const Span& s) {
     for (int k = 0; k < 2; ++k) {
       const bool spec = k == 1;
       const cosn::CosnCoeffs& c = spec ? coeffs_.specular : coeffs_.diffuse;
-      if (!c.valid) continue;
+      if (!c.valid || !t_.defined[li][k]) continue;
       const EdgeArcs& arcs = spec ? light.h : light.l;
       const Unit x_l = arcs.at(s.left), x_r = arcs.at(s.right);
       if (!have_frame) {  // N's circle, once per span (the first direction breaks a tie)

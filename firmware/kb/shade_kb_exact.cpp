@@ -41,6 +41,7 @@ inline void KbExactMethod::prepare_span(const Span& s) {
   for (int li = 0; li < t_.lights; ++li) {
     for (int k = 0; k < 2; ++k) {
       const bool spec = k == 1;
+      if (!t_.defined[li][k]) continue;
       const EdgeArcs& arcs = spec ? t_.light[li].h : t_.light[li].l;
       const Unit x_l = arcs.at(s.left), x_r = arcs.at(s.right);
       const CircleFrame fn = circle_frame(nl, nr, x_l), fl = circle_frame(x_l, x_r, nl);

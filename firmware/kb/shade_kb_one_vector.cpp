@@ -190,6 +190,8 @@ bool KbOneVectorMethod::setup(const Triangle& tri, const ShadeContext& ctx) {
 void KbOneVectorMethod::add_term(const Unit v[3], const cosn::CosnCoeffs& c, const Support& support,
                                  const q1_30 weight[3]) {
   if (weight[0].raw() == 0 && weight[1].raw() == 0 && weight[2].raw() == 0) return;  // adds 0
+  // Undefined at a vertex (firmware/lighting.hpp): left out, by the no-skip form as well.
+  if (undefined_direction(v, 3)) return;
   if (skipping_ && beyond_support(v, o_, support)) {
     ++counters_->lights_skipped_triangle;
     return;

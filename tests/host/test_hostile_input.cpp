@@ -351,3 +351,40 @@ TEST(HostileScene, CoordinatesBeyondTheDevicesRangeAreNamed) {
   }
   std::filesystem::remove(dir / "far.obj");
 }
+
+// Found by review, 2026-12-07: the renderer sized its block for the layout with a depth buffer,
+// and a frame without one, one or two pixels high, needs more (the write counts and the depth
+// buffer's one row): kb-adaptive, whose state is the largest, was refused at set_method ("out of
+// device memory") at 640x1 and 1x2 (`tinyphong render --no-depth-buffer --size 640x1`). Every
+// method, every layout the renderer sets, at those sizes.
+TEST(HostileSize, FramesOneOrTwoPixelsHighFitTheirBlockInEveryLayout) {
+  for (const auto& [w, h] :
+       std::vector<std::pair<int, int>>{{1, 1}, {640, 1}, {4096, 1}, {1, 2}, {3, 2}, {7, 5}}) {
+    for (const auto& info : method_names()) {
+      for (const int layout : {0, 1, 2}) {  // depth buffer; write counts; a small part's frame
+        Scene scene =
+            parse_scene("{\"meshes\": [{\"generator\": \"triangle\"}], \"resolution\": [" +
+                            std::to_string(w) + ", " + std::to_string(h) +
+                            "], \"lights\": [{\"type\": \"point\", \"position\": [0, 0, "
+                            "0.05]}], \"camera\": {\"type\": \"orthographic\"}}",
+                        "flat.json", TP_HOST_TEST_DATA);
+        scene.method = std::string(info.name);
+        scene.depth_buffer = layout == 0;
+        scene.small_part_frame = layout == 2;
+        // Buffers for the mesh alone, as the CLI sizes them (the defaults' 2^17 vertices leave
+        // room enough to hide the shortfall).
+        std::uint32_t vertices = 0, indices = 0;
+        for (const auto& m : scene.meshes) {
+          vertices += static_cast<std::uint32_t>(m.mesh.positions.size());
+          indices += static_cast<std::uint32_t>(3 * m.mesh.triangles.size());
+        }
+        DeviceRenderer device(w, h, vertices, indices);
+        EXPECT_NO_THROW({
+          device.set_scene(scene);
+          device.render();
+        }) << w
+           << "x" << h << " " << info.name << " layout " << layout;
+      }
+    }
+  }
+}
