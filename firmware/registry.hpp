@@ -88,6 +88,9 @@ struct MethodInfo {
   // A verification variant (the same method with its skips disabled) names the method whose
   // image it must reproduce byte for byte; Method{} (0) for the others.
   Method same_image_as{};
+  // The method's image depends on set_budget's error budget (ShadeContext::budget_levels): the
+  // CLI says so when --budget is given for a method that does not read it.
+  bool reads_budget = false;
 };
 
 inline constexpr Fidelity kExact = Fidelity::kExact;
@@ -213,13 +216,16 @@ inline constexpr MethodInfo kMethodTable[] = {
      "Kuijk-Blake per triangle under an error budget (1 level unless set): quadratic, "
      "subdivision or per pixel, within the budget of the exact evaluation",
      {kExact, kExact, kExact},
-     slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kAdaptive>()},
+     slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kAdaptive>(),
+     /*same_image_as=*/Method{},
+     /*reads_budget=*/true},
     {Method::kKuijkBlakeAdaptiveNoSkip,
      "kb-adaptive-noskip",
      "kb-adaptive with every skip disabled (same image)",
      {kExact, kExact, kExact},
      slot_of<kb::KbAdaptiveMethod, kb::AdaptiveMode::kNoSkip>(),
-     Method::kKuijkBlakeAdaptive},
+     Method::kKuijkBlakeAdaptive,
+     /*reads_budget=*/true},
     {Method::kKuijkBlakeAdaptiveExact,
      "kb-adaptive-exact",
      "kb-adaptive's exact evaluation at every pixel (the reference of its error budget)",

@@ -40,12 +40,17 @@ std::vector<std::string> selected_methods(const Options& o) {
   return all;
 }
 
-bool selected(const Case& c, const Options& o) {
-  if (o.quick && !c.quick) return false;
-  return o.case_filter.empty() || c.name.find(o.case_filter) != std::string::npos;
-}
-
 }  // namespace
+
+std::vector<const Case*> selected_cases(const Options& options) {
+  std::vector<const Case*> chosen;
+  for (const Case& c : cases()) {
+    if (options.quick && !c.quick) continue;
+    if (options.case_filter.empty() || c.name.find(options.case_filter) != std::string::npos)
+      chosen.push_back(&c);
+  }
+  return chosen;
+}
 
 std::string_view verdict_name(Verdict v) {
   switch (v) {
@@ -84,8 +89,8 @@ std::vector<Result> run(const Options& options,
   for (const std::string& m : options.methods) (void)method_from_name(m);  // throws, naming them
   const std::vector<std::string> methods = selected_methods(options);
   std::vector<Result> results;
-  for (const Case& c : cases()) {
-    if (!selected(c, options)) continue;
+  for (const Case* chosen : selected_cases(options)) {
+    const Case& c = *chosen;
     Rng rng(options.seed ^ name_hash(c.name));
     Scene scene = c.build(rng);
     DeviceRenderer device(scene.width, scene.height);

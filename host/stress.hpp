@@ -101,6 +101,9 @@ struct Options {
   std::string image_dir;  // when set: CASE.reference.png and CASE.METHOD.png written there
 };
 
+// The cases the options select (--quick, --cases), in table order; --list prints these.
+std::vector<const Case*> selected_cases(const Options& options);
+
 // Runs the selected cases; `progress` (may be empty) is called after each result.
 std::vector<Result> run(const Options& options,
                         const std::function<void(const Result&)>& progress = {});

@@ -38,16 +38,37 @@ void write_file(const std::string& path, const std::function<void(std::ostream&)
   replace_file(path, text.view());
 }
 
-void list_cases() {
-  for (const stress::Case& c : stress::cases())
-    std::cout << c.name << (c.quick ? "\tquick\t" : "\t\t") << c.family << "\t" << c.what << "\n";
+void list_cases(const std::vector<const stress::Case*>& chosen) {
+  for (const stress::Case* c : chosen)
+    std::cout << c->name << (c->quick ? "\tquick\t" : "\t\t") << c->family << "\t" << c->what
+              << "\n";
+}
+
+// Why --quick and --cases select nothing; a filter that matches only cases outside the quick
+// subset says so, since those cases exist.
+std::string nothing_selected(const stress::Options& options) {
+  std::string why = std::string("no ") + (options.quick ? "quick " : "") +
+                    "case matches --cases '" + options.case_filter + "'";
+  if (options.quick) {
+    stress::Options all = options;
+    all.quick = false;
+    if (const std::size_t n = stress::selected_cases(all).size(); n != 0)
+      return why + " (" + std::to_string(n) + (n == 1 ? " case" : " cases") +
+             " outside the quick subset " + (n == 1 ? "does" : "do") + ": leave out --quick)";
+  }
+  return why + " (tinyphong stress --list names the cases)";
 }
 
 }  // namespace
 
 int run_stress_command(const StressCli& cli) {
+  const std::vector<const stress::Case*> chosen = stress::selected_cases(cli.options);
+  if (chosen.empty()) {
+    std::cerr << "tinyphong stress: " << nothing_selected(cli.options) << "\n";
+    return 2;
+  }
   if (cli.list) {
-    list_cases();
+    list_cases(chosen);
     return 0;
   }
   std::vector<stress::Result> results;
@@ -60,10 +81,6 @@ int run_stress_command(const StressCli& cli) {
   } catch (const ImageIoError& e) {  // --images: a file not written is no result out of bounds
     std::cerr << "tinyphong stress: " << e.what() << "\n";
     return 3;
-  }
-  if (results.empty()) {
-    std::cerr << "tinyphong stress: no case matches --cases '" << cli.options.case_filter << "'\n";
-    return 2;
   }
   stress::print_tables(std::cout, results);
   if (cli.options.seed != stress::kDefaultSeed)
@@ -98,7 +115,7 @@ void add_stress_command(CLI::App& app, StressCli& cli) {
                   "seed of the cases' random parts (the bounds are the default seed's)")
       ->check(kSeed);
   cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
-  cmd->add_flag("--list", cli.list, "list the cases and exit");
+  cmd->add_flag("--list", cli.list, "list the cases --quick and --cases select, and exit");
   cmd->add_option("--images", cli.options.image_dir,
                   "write each case's reference and device images (PNG) into this folder")
       ->check(CLI::ExistingDirectory);

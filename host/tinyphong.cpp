@@ -28,6 +28,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "firmware/registry.hpp"
 #include "firmware/types.hpp"
 #include "host/cli_options.hpp"
 #include "host/command_stream.hpp"
@@ -93,9 +94,24 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
                 "the specular part alone: ka = kd = 0 (Vlasic's specular-only images)");
 }
 
+// --budget given for a method whose image does not depend on it (the registry's reads_budget):
+// the frame is drawn as without it, and the user is told, not refused, so that a script may pass
+// one budget to every method it measures (docs/DECISIONS.md, "A budget no method reads").
+void note_unread_budget(const SceneOptions& o, const Scene& s) {
+  if (o.budget == 0) return;
+  const tp::fw::MethodInfo* row = tp::fw::find_method(s.method);
+  if (row == nullptr || row->reads_budget) return;
+  std::string readers;
+  for (const tp::fw::MethodInfo& m : tp::fw::kMethodTable)
+    if (m.reads_budget) readers += (readers.empty() ? "" : ", ") + std::string(m.name);
+  std::cerr << "tinyphong: note: --budget " << o.budget << " has no effect on " << s.file
+            << ": its method " << s.method << " reads no error budget (" << readers << " do)\n";
+}
+
 Scene load(const SceneOptions& o) {
   Scene s = load_scene(o.scene);
   if (!o.method.empty()) s.method = o.method;
+  note_unread_budget(o, s);
   if (o.budget != 0) s.budget = o.budget;
   if (o.specular_only) keep_specular_only(s);
   if (o.no_depth_buffer || o.small_part) s.depth_buffer = false;

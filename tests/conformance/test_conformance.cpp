@@ -308,6 +308,28 @@ TEST_P(Conformance, CountsAsTheCountersAreDefined) {
   }
 }
 
+// The registry's reads_budget is what the images say: a method that reads no error budget draws
+// every paper scene the same at budgets 1 and 16, the largest (the CLI tells a user that --budget
+// has no effect on it); one that reads it draws some paper scene otherwise.
+TEST_P(Conformance, ReadsTheErrorBudgetWhereTheRegistrySays) {
+  const fw::MethodInfo& m = GetParam();
+  int differing = 0;
+  for (const std::string& name : paper_scenes()) {
+    SCOPED_TRACE(name);
+    Scene s = paper_scene(name);
+    s.budget = 1;
+    const DeviceFrame tight = draw(s, m.name);
+    s.budget = static_cast<int>(fw::kMaxBudgetLevels);
+    const bool same = draw(s, m.name).rgb == tight.rgb;
+    if (!m.reads_budget) {
+      EXPECT_TRUE(same);
+    }
+    differing += same ? 0 : 1;
+    if (m.reads_budget && differing > 0) break;
+  }
+  EXPECT_EQ(differing > 0, m.reads_budget);
+}
+
 INSTANTIATE_TEST_SUITE_P(Registry, Conformance, ::testing::ValuesIn(fw::kMethodTable),
                          [](const auto& info) { return test_name(info.param); });
 

@@ -4,7 +4,8 @@
 # within ±1e6 degrees (NaN, infinity and 1e308, whose radians overflow, drew a black image and
 # exited 0). Each refusal exits non-zero, names the option and writes no image; good values work.
 # A frame the device refuses at the rotation asked for is refused by render, record and reference.
-# And the exit statuses: 2 on a bad option of any subcommand, 3 when stress cannot write its file.
+# And the exit statuses: 2 on a bad option of any subcommand, 3 when stress cannot write its file;
+# stress --list lists what --quick and --cases select; --budget for a method that reads none is noted.
 # Usage: cli_options_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -124,6 +125,35 @@ grep -q "^1 result, " <<<"$twice" || { echo "FAIL: stress --methods flat,flat: '
   >/dev/null 2>&1 || true
 grep -q '"seed": 18446744073709551615' "$work/s.json" ||
   { echo "FAIL: the largest seed was not the one used"; fail=1; }
+
+# --list lists the cases --quick and --cases select, and a filter matching only cases outside the
+# quick subset says so (--list ignored both and listed all 36; "no case matches --cases
+# 'grazing-0.1'" although the case exists; found by review, 2026-12-07).
+listed=$("$tp" stress --list --cases grazing)
+all=$("$tp" stress --list | wc -l)
+quick=$("$tp" stress --list --quick | wc -l)
+if [ -z "$listed" ] || grep -qv "^[^[:space:]]*grazing" <<<"$listed" || [ "$quick" -ge "$all" ] ||
+   [ "$quick" -ne "$("$tp" stress --list | grep -c "	quick	")" ]; then
+  echo "FAIL: stress --list with --cases / --quick: '$listed', $quick of $all"; fail=1
+else
+  echo "ok: stress --list lists the selected cases ($quick quick of $all)"
+fi
+exits 2 "no quick case matches --cases 'grazing-0.1' (1 case outside the quick subset does: leave out --quick)" \
+  stress --quick --cases grazing-0.1
+exits 2 "no case matches --cases 'nosuchcase' (tinyphong stress --list names the cases)" \
+  stress --list --cases nosuchcase
+# --budget for a method that reads none: drawn, and the user told (it was taken without a word;
+# found by review, 2026-12-07); for kb-adaptive no note. The image is the one without --budget.
+out=$("$tp" render "$tri" -m kb --budget 4 -o "$work/b4.png" 2>&1 >/dev/null) &&
+  "$tp" render "$tri" -m kb -o "$work/b1.png" >/dev/null &&
+  cmp -s "$work/b4.png" "$work/b1.png" &&
+  grep -qF "note: --budget 4 has no effect on $tri: its method kb reads no error budget (kb-adaptive, kb-adaptive-noskip do)" <<<"$out" ||
+  { echo "FAIL: render -m kb --budget 4: '$out'"; fail=1; }
+out=$("$tp" record "$tri" -m gouraud --budget 2 -o "$work/b.tpcmd" 2>&1 >/dev/null) &&
+  grep -qF "note: --budget 2 has no effect" <<<"$out" ||
+  { echo "FAIL: record -m gouraud --budget 2: '$out'"; fail=1; }
+out=$("$tp" render "$tri" -m kb-adaptive --budget 4 -o "$work/b4.png" 2>&1 >/dev/null) &&
+  ! grep -q "note:" <<<"$out" || { echo "FAIL: render -m kb-adaptive --budget 4: '$out'"; fail=1; }
 
 [ $fail -eq 0 ] && echo "CLI option checks: all as expected"
 exit $fail

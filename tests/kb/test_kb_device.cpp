@@ -8,7 +8,6 @@
 // and deterministic, so the values reproduce exactly; the margins absorb deliberate changes.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -123,9 +122,8 @@ TEST_P(KbAccuracy, WithinMeasuredBounds) {
 
 INSTANTIATE_TEST_SUITE_P(PaperScenes, KbAccuracy, ::testing::ValuesIn(kMeasured),
                          [](const auto& info) {
-                           std::string n = std::string(info.param.scene) + "_" + info.param.method;
-                           std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
+                           return kbtest::test_name_of(std::string(info.param.scene) + "_" +
+                                                       info.param.method);
                          });
 
 // The targets against the Phong reference (Vlasic's best: 0.9949 and 0.9311).
@@ -235,12 +233,7 @@ TEST_P(KbBacklight, NoHighlightWhereTheHalfwayVectorIsUndefined) {
 INSTANTIATE_TEST_SUITE_P(Sphere512, KbBacklight,
                          ::testing::Values(Backlit{"kb", 6}, Backlit{"kb-decomposition", 6},
                                            Backlit{"kb-exact", 2}, Backlit{"kb-adaptive", 1}),
-                         [](const auto& info) {
-                           std::string n = info.param.method;
-                           for (char& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
-                         });
+                         [](const auto& info) { return kbtest::test_name_of(info.param.method); });
 
 }  // namespace
 }  // namespace tp::host
@@ -272,11 +265,7 @@ TEST_P(KbCoherence, WithinOneLevelOfExactSetup) {
 INSTANTIATE_TEST_SUITE_P(PaperScenes, KbCoherence,
                          ::testing::Values("sphere-32", "sphere-40", "sphere-512",
                                            "dodecahedron-30", "triangle", "teapot"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
-                         });
+                         [](const auto& info) { return kbtest::test_name_of(info.param); });
 
 }  // namespace
 }  // namespace tp::host
