@@ -176,6 +176,16 @@ StreamError::StreamError(std::size_t offset, std::uint32_t op, fw::Error e, cons
       opcode(op),
       error(e) {}
 
+std::optional<std::string> unfinished_frame(std::span<const std::uint32_t> words) {
+  if (words.empty()) return "the stream is empty: no frame";
+  std::size_t last = 0;
+  for (std::size_t at = 0; at < words.size(); at += 1 + (words[at] >> 16)) last = at;
+  const std::uint32_t op = words[last] & 0xffffu;
+  if (op == static_cast<std::uint32_t>(fw::Opcode::kEndFrame)) return std::nullopt;
+  return "the stream ends with " + opcode_name(op) + " at word " + std::to_string(last) +
+         ", not end_frame: no whole frame (a truncated file?)";
+}
+
 void run_stream(fw::Device& device, std::span<const std::uint32_t> words) {
   const fw::Error e = device.execute(words);
   if (e == fw::Error::kOk) return;

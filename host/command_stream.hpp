@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,11 @@ class StreamError : public std::runtime_error {
   std::uint32_t opcode;  // 0 if the stream ended inside the header's payload
   fw::Error error;
 };
+
+// A stream that ran (whole commands only) but whose last command is not end_frame stops inside a
+// frame: a file cut at a command's boundary, which `tinyphong replay` refuses with this message
+// (the frame so far would pass for the frame). nullopt when it ends with end_frame.
+std::optional<std::string> unfinished_frame(std::span<const std::uint32_t> words);
 
 // Runs `words` through Device::execute; throws StreamError at the first failing command.
 void run_stream(fw::Device& device, std::span<const std::uint32_t> words);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "host/command_stream.hpp"
+#include "host/quoted.hpp"
 #include "host/to_fixed.hpp"
 
 namespace tp::host {
@@ -94,8 +95,10 @@ fw::Method method_from_name(std::string_view name) {
   if (const fw::MethodInfo* m = fw::find_method(name)) return m->id;
   std::string valid;
   for (const auto& m : method_names()) valid += (valid.empty() ? "" : ", ") + std::string(m.name);
-  throw std::invalid_argument("unknown shading method '" + std::string(name) +
-                              "' (valid: " + valid + ")");
+  // Quoted with its control bytes as \xNN: a NUL in it ("phong\0x", sent by a client) ended
+  // the message at the name (found by review, 2026-12-07).
+  throw std::invalid_argument("unknown shading method " + quoted(name, 64) + " (valid: " + valid +
+                              ")");
 }
 
 std::string_view fidelity_name(fw::Fidelity f) {

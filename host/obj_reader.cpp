@@ -16,6 +16,7 @@
 #include <tiny_obj_loader.h>
 
 #include "host/meshes.hpp"
+#include "host/quoted.hpp"
 #include "host/text_file.hpp"
 
 namespace tp::host {
@@ -30,22 +31,8 @@ std::string at_line(const std::string& file, std::size_t line) {
   return file + ":" + std::to_string(line);
 }
 
-// At most the first 32 bytes of a token, quoted, for an error: control bytes as \xNN, so that a
-// NUL does not end the message where it is printed and a CR or ESC does not garble a terminal.
-std::string quoted(std::string_view token) {
-  std::string out = "'";
-  for (const char c : token.substr(0, 32)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      char hex[5];
-      std::snprintf(hex, sizeof hex, "\\x%02x", byte);
-      out += hex;
-    } else {
-      out += c;
-    }
-  }
-  return out + "'";
-}
+// How much of a token an error quotes (host/quoted.hpp).
+constexpr std::size_t kQuotedBytes = 32;
 
 // tinyobjloader separates words by spaces and tabs only; so does the scan, so that both see the
 // same records ("\fv 1 2 3" is none) and the same numbers ("1\v2" is one word, not a number).
@@ -82,7 +69,7 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     const auto named = [&] {
       return std::string(record) + " " +
              (k < 4 ? std::string(kFields[k]) : "value " + std::to_string(k + 1)) + " " +
-             quoted(token);
+             quoted(token, kQuotedBytes);
     };
     double value = 0;
     // from_chars takes no '+'; one sign at most ("+-1" is no number).
@@ -99,7 +86,7 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     if (ec != std::errc() || ptr != end) refuse(where, named() + " is not a number");
     if (!std::isfinite(value)) refuse(where, named() + " is not a finite number");
     if (std::abs(value) > std::numeric_limits<float>::max())
-      refuse(where, std::string(record) + " " + quoted(token) +
+      refuse(where, std::string(record) + " " + quoted(token, kQuotedBytes) +
                         " is beyond the single-precision range OBJ numbers are read in");
     if (k < 3) read.values[static_cast<std::size_t>(read.count++)] = value;
   }
@@ -128,7 +115,8 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
     const std::size_t slash = corner.find('/', start);
     const std::string_view field = corner.substr(
         start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
-    if (kind > 2) refuse(where, "face corner " + quoted(corner) + " has more than three indices");
+    if (kind > 2)
+      refuse(where, "face corner " + quoted(corner, kQuotedBytes) + " has more than three indices");
     const bool may_be_empty = kind == 1 && slash != std::string_view::npos;  // "v//vn"
     if (!(field.empty() && may_be_empty)) {
       long long index = 0;
@@ -138,7 +126,7 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
           std::from_chars(field.data() + (plus ? 1 : 0), field.data() + field.size(), index);
       // "face corner '…': vertex index", built only for an error.
       const auto named = [&] {
-        return "face corner " + quoted(corner) + ": " + kIndexKinds[kind] + " index";
+        return "face corner " + quoted(corner, kQuotedBytes) + ": " + kIndexKinds[kind] + " index";
       };
       if (ec != std::errc() || ptr != field.data() + field.size())
         refuse(where, named() + " is not an integer");
@@ -273,10 +261,31 @@ glm::dvec3 unit_normal(const tinyobj::attrib_t& attrib, int normal_index, const 
 }
 
 // OBJ indexes positions and normals separately; one mesh vertex per distinct pair.
+// The normals of the vertices made from corners that give none (`f 1 2 3`, `f 1/2 3/4 5/6`): the
+// area-weighted mean of the faces around the vertex's position, as compute_normals gives a file
+// with no normals at all. The file's own normals are kept: a file that gave them on some faces
+// only had them all replaced (found by review, 2026-12-07).
+void compute_missing_normals(Mesh& m, const std::vector<int>& position_of,
+                             const std::vector<bool>& missing, std::size_t positions) {
+  std::vector<glm::dvec3> around(positions, glm::dvec3(0));
+  for (const auto& t : m.triangles) {
+    const glm::dvec3 n = glm::cross(m.positions[t[1]] - m.positions[t[0]],
+                                    m.positions[t[2]] - m.positions[t[0]]);  // 2·area·normal
+    for (auto v : t) around[static_cast<std::size_t>(position_of[v])] += n;
+  }
+  for (std::size_t v = 0; v < m.normals.size(); ++v) {
+    if (!missing[v]) continue;
+    const glm::dvec3 n = around[static_cast<std::size_t>(position_of[v])];
+    m.normals[v] = glm::length(n) > 0 ? glm::normalize(n) : glm::dvec3(0, 0, 1);
+  }
+}
+
 Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std::string& file) {
   const auto& attrib = reader.GetAttrib();
   Mesh m;
   bool missing_normals = false;
+  std::vector<int> position_of;  // per vertex of m: its "v" record
+  std::vector<bool> missing;     // per vertex of m: made from corners without a normal
   std::map<std::pair<int, int>, std::uint32_t> index;
   const auto nv = static_cast<int>(attrib.vertices.size() / 3);
   const auto nn = static_cast<int>(attrib.normals.size() / 3);
@@ -297,6 +306,8 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std:
           m.positions.emplace_back(attrib.vertices[vi], attrib.vertices[vi + 1],
                                    attrib.vertices[vi + 2]);
           m.normals.push_back(unit_normal(attrib, id.normal_index, tally, file));
+          position_of.push_back(id.vertex_index);
+          missing.push_back(id.normal_index < 0);
           const auto added = static_cast<std::uint32_t>(m.positions.size() - 1);
           it = index.emplace(std::make_pair(id.vertex_index, id.normal_index), added).first;
         }
@@ -305,7 +316,8 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std:
       m.triangles.push_back(tri);
     }
   }
-  if (missing_normals) compute_normals(m);
+  if (missing_normals)
+    compute_missing_normals(m, position_of, missing, static_cast<std::size_t>(nv));
   return m;
 }
 

@@ -396,6 +396,13 @@ void reject_deep_nesting(std::string_view text, const std::string& file) {
 Scene parse_scene(std::string_view text, const std::string& file,
                   const std::filesystem::path& base_dir) {
   if (text.size() > kMaxSceneFileBytes) throw_too_large(file);
+  // nlohmann's lexer reads a NUL byte as the end of its input, so a scene followed by "\0" and
+  // anything at all loaded without a word (found by review, 2026-12-07). JSON text holds none:
+  // inside a string it is written \u0000.
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos)
+    throw SceneError(file, line_of_offset(text, nul), "",
+                     "malformed JSON: a NUL byte (0x00) at byte " + std::to_string(nul + 1) +
+                         ", which JSON text cannot hold");
   reject_deep_nesting(text, file);
   json j;
   try {

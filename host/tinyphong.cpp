@@ -347,6 +347,10 @@ int run_replay_one(const std::string& in, const std::string& out, bool print_has
     std::cerr << "tinyphong replay: " << in << ": " << e.what() << "\n";
     return 1;
   }
+  if (const std::optional<std::string> why = unfinished_frame(words)) {
+    std::cerr << "tinyphong replay: " << in << ": " << *why << "\n";
+    return 1;
+  }
   const tp::fw::Device& device = replay->device();
   if (print_hash)
     std::cout << hash_hex(framebuffer_hash(device.framebuffer())) << "  " << in << "\n";

@@ -236,6 +236,10 @@ ParseResult parse_control(const std::string& text) {
   if (text.size() > kControlMessageLimit)
     return {std::nullopt, "message too large (" + std::to_string(text.size()) + " bytes > " +
                               std::to_string(kControlMessageLimit) + ")"};
+  // A NUL byte ends nlohmann's input: {"type":"step"}\0 and whatever followed were taken as the
+  // message before it (found by review, 2026-12-07). JSON text holds none.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    return {std::nullopt, "malformed JSON: a NUL byte (0x00) at byte " + std::to_string(nul + 1)};
   // A key given twice in one object: JSON lets nlohmann keep the last value, so
   // {"type":"step","type":"set_budget","levels":3} was a set_budget. Refused, as the scene
   // files refuse it (host/scene.cpp).

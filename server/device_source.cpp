@@ -1,10 +1,14 @@
 #include "server/device_source.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <iostream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "firmware/types.hpp"
 #include "host/reference.hpp"
@@ -73,6 +77,19 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
   return sc;
 }
 
+// A name a client can send back in set_scene (server/control.cpp): 1 to 64 bytes of valid UTF-8.
+// The page was offered longer names and names in another encoding (shown with U+FFFD), which
+// the server then refused (found by review, 2026-12-07).
+bool selectable(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  try {
+    (void)nlohmann::json(name).dump();  // throws on invalid UTF-8
+    return true;
+  } catch (const nlohmann::json::type_error&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& scene, int width,
@@ -81,9 +98,14 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
   if (std::error_code ec; !std::filesystem::is_directory(dir_, ec))
     throw std::runtime_error("scenes folder " + dir_.string() + ": " +
                              (ec ? ec.message() : std::string("not a folder")));
-  for (const auto& e : std::filesystem::directory_iterator(dir_))
-    if (e.is_regular_file() && e.path().extension() == ".json")
-      scene_names_.push_back(e.path().stem().string());
+  for (const auto& e : std::filesystem::directory_iterator(dir_)) {
+    if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+    if (std::string name = e.path().stem().string(); selectable(name))
+      scene_names_.push_back(std::move(name));
+    else
+      std::cerr << "tinyphong-server: " << e.path().string()
+                << " not offered: a scene's name is 1 to 64 bytes of UTF-8 (set_scene)\n";
+  }
   std::sort(scene_names_.begin(), scene_names_.end());
   if (std::find(scene_names_.begin(), scene_names_.end(), scene) == scene_names_.end())
     throw std::runtime_error("no scene '" + scene + "' in " + dir_.string());
@@ -129,10 +151,15 @@ Result DeviceSource::apply(const ViewSettings& s) {
 Result DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
     return Result::failure("unknown scene '" + name + "'");
+  const std::filesystem::path file = dir_ / (name + ".json");
+  // A regular file only, as listed at start: a FIFO put in its place blocked the render loop in
+  // the read, and with it every client and the server's stop (found by review, 2026-12-07).
+  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
+    return Result::failure("scene '" + name + "' is no longer a regular file in the scenes folder");
   try {
     // The viewer keeps the method, budget and view it shows; the scene file's own method and
     // budget are for the CLI.
-    host::Scene sc = host::load_scene(dir_ / (name + ".json"));
+    host::Scene sc = host::load_scene(file);
     sc.method = settings_.method;
     sc.budget = settings_.budget;
     return install(std::move(sc), name, settings_.specular_only);

@@ -68,17 +68,20 @@ struct CircleFrame {
   Unit e1{}, e2{}, e3{};
   angle_t angle{};
 };
-inline CircleFrame circle_frame(const Unit& from, const Unit& to, const Unit& hint) {
-  const Arc arc = make_arc(from, to);
-  CircleFrame f{from, arc.tangent, Unit{}, arc.angle};
+inline CircleFrame circle_frame(const Arc& arc, const Unit& hint) {
+  CircleFrame f{arc.from, arc.tangent, Unit{}, arc.angle};
   if (!arc.has_direction()) {
     // Tangent toward the hint (so that the hint lies on the circle), else any.
-    const Unit w = combine(q1_30::one(), hint, fx::neg_sat(fx::dot<q1_30>(hint, from)), from);
-    if (is_negligible(w) || !fx::try_normalize<q1_30>(w, f.e2)) f.e2 = any_perpendicular(from);
+    const Unit w =
+        combine(q1_30::one(), hint, fx::neg_sat(fx::dot<q1_30>(hint, arc.from)), arc.from);
+    if (is_negligible(w) || !fx::try_normalize<q1_30>(w, f.e2)) f.e2 = any_perpendicular(arc.from);
     f.angle = angle_t::zero();
   }
   f.e3 = fx::cross<q1_30>(f.e1, f.e2);
   return f;
+}
+inline CircleFrame circle_frame(const Unit& from, const Unit& to, const Unit& hint) {
+  return circle_frame(make_arc(from, to), hint);
 }
 
 // Signed angle of x around the frame's pole, from e1 toward e2 (longitude), and its angle out

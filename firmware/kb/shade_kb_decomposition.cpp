@@ -47,6 +47,7 @@ inline void KbDecompositionMethod::prepare_span(const Span& s) {
   const xpos_t first = pixel_centre(s.x0);
   const Unit nl = t_.n.at(s.left), nr = t_.n.at(s.right);
   terms_ = 0;
+  const Arc n_arc = make_arc(nl, nr);
   CircleFrame frame{};
   bool have_frame = false;
   for (int li = 0; li < t_.lights; ++li) {
@@ -57,8 +58,11 @@ inline void KbDecompositionMethod::prepare_span(const Span& s) {
       if (!c.valid || !t_.defined[li][k]) continue;
       const EdgeArcs& arcs = spec ? light.h : light.l;
       const Unit x_l = arcs.at(s.left), x_r = arcs.at(s.right);
-      if (!have_frame) {  // N's circle, once per span (the first direction breaks a tie)
-        frame = circle_frame(nl, nr, x_l);
+      // N's circle: once per span where N moves along it. Where it does not (a flat face), each
+      // term takes the circle through its own direction, as kb-exact does: one term's circle for
+      // all made the others' angles depend on which light came first, a dark one included.
+      if (!have_frame || !n_arc.has_direction()) {
+        frame = circle_frame(n_arc, x_l);
         have_frame = true;
       }
       const std::int64_t u1 = -std::int64_t{longitude(frame, x_l).raw()};

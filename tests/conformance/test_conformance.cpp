@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <ostream>
 #include <string>
@@ -159,17 +160,59 @@ TEST_P(Conformance, RendersAFrameTheSameWayEveryTime) {
   }
 }
 
+// A flat square, one normal everywhere, under a near point light and a coloured directional one.
+// On it kb-decomposition took N's circle, which a span's arc of one normal does not fix, through
+// the first light's direction for every light: a dark light put first, or the lights' order
+// swapped, changed pixels by up to 54 levels (found by review, 2026-12-07).
+Scene flat_square() {
+  Scene s = parse_scene(R"({
+    "camera": {"type": "orthographic", "extents": [-1.25, 1.25, -1.25, 1.25],
+               "near": -10, "far": 10},
+    "lights": [{"type": "point", "position": [0.3, 0.2, 0.4]},
+               {"type": "directional", "direction": [-0.5, 0.3, 1], "colour": [0.6, 0.5, 0.4]}],
+    "material": {"colour": [0.2, 0.4, 1.0], "ka": 0.1, "kd": 0.6, "ks": 0.4, "n": 20},
+    "meshes": [{"obj": "quad.obj"}]})",
+                        "flat-square.json", TP_SCENES_DIR);
+  s.width = kWidth;
+  s.height = kHeight;
+  return s;
+}
+
+// The paper scenes named, then the flat square.
+std::vector<Scene> with_flat_square(std::initializer_list<const char*> paper) {
+  std::vector<Scene> scenes;
+  for (const char* name : paper) scenes.push_back(paper_scene(name));
+  scenes.push_back(flat_square());
+  return scenes;
+}
+
 // A light of zero intensity adds exactly nothing: whatever the method skips or evaluates for it,
-// no pixel may change.
+// and wherever it stands in the list, no pixel may change.
 TEST_P(Conformance, ADarkLightChangesNoPixel) {
   const fw::MethodInfo& m = GetParam();
-  for (const char* name : {"teapot", "sphere-32-l2", "dodecahedron-30-l4", "triangle"}) {
-    SCOPED_TRACE(name);
-    const Scene s = paper_scene(name);
+  for (const Scene& s :
+       with_flat_square({"teapot", "sphere-32-l2", "dodecahedron-30-l4", "triangle"})) {
+    SCOPED_TRACE(s.file);
+    const std::vector<std::uint8_t> image = draw(s, m.name).rgb;
     Scene dark = s;
     dark.lights.push_back({LightKind::Directional, {0.3, 0.4, 0.866}, {0, 0, 0}});
     dark.lights.push_back({LightKind::Point, {-1.0, 2.0, 3.0}, {0, 0, 0}});
-    EXPECT_TRUE(draw(dark, m.name).rgb == draw(s, m.name).rgb);
+    EXPECT_TRUE(draw(dark, m.name).rgb == image) << "dark lights last";
+    dark = s;
+    dark.lights.insert(dark.lights.begin(), {LightKind::Directional, {0, 1, 0}, {0, 0, 0}});
+    EXPECT_TRUE(draw(dark, m.name).rgb == image) << "a dark light first";
+  }
+}
+
+// The lights' contributions are summed: their order in the scene changes no pixel.
+TEST_P(Conformance, TheLightsOrderChangesNoPixel) {
+  const fw::MethodInfo& m = GetParam();
+  for (const Scene& s :
+       with_flat_square({"teapot-l4", "sphere-32-l4", "dodecahedron-30-l4", "triangle-l4"})) {
+    SCOPED_TRACE(s.file);
+    Scene reversed = s;
+    std::reverse(reversed.lights.begin(), reversed.lights.end());
+    EXPECT_TRUE(draw(reversed, m.name).rgb == draw(s, m.name).rgb);
   }
 }
 
@@ -395,6 +438,18 @@ TEST(Registry, TheHostListsEveryRow) {
     EXPECT_GT(fw::Device::method_bytes(m.id), 0u) << m.name;
   }
   EXPECT_THROW(method_from_name("no-such-method"), std::invalid_argument);
+  // A name with a NUL in it (a client's "phong\u0000x") is quoted whole, its control bytes as
+  // \xNN: the message ended at the NUL, without its list of valid names (found by review,
+  // 2026-12-07).
+  try {
+    (void)method_from_name(std::string_view("phong\0x\x1b", 8));
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("unknown shading method 'phong\\x00x\\x1b' (valid: flat, "),
+        std::string::npos)
+        << e.what();
+  }
   // Reserved ids have no row and no state: set_method refuses them.
   for (const fw::Method reserved : {static_cast<fw::Method>(10), static_cast<fw::Method>(20)}) {
     EXPECT_EQ(fw::find_method(reserved), nullptr);

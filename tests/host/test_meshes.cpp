@@ -172,6 +172,32 @@ TEST(Obj, NonFiniteNumbersNameFileLineAndField) {
   }
 }
 
+// A file that gives normals on some faces only keeps them, and only the corners without one get
+// the faces' mean: all of them were replaced (found by review, 2026-12-07). A square folded along
+// its diagonal (1, 3): the face 1 2 3 in z = 0, the face 1 3 4 tilted up toward vertex 4.
+TEST(Obj, KeepsTheNormalsAFileGivesAndComputesOnlyTheMissingOnes) {
+  const Mesh m = parse_obj(
+      "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 1\n"
+      "vn 0.6 0 0.8\nvn -0.6 0 0.8\n"
+      "f 1//1 2//2 3//2\nf 1 3 4\n",
+      "mixed.obj");
+  ASSERT_EQ(m.triangles.size(), 2u);
+  ASSERT_EQ(m.positions.size(), 6u);  // three corners with normals, three without
+  const auto& first = m.triangles[0];
+  // (the file's numbers are read in single precision)
+  EXPECT_NEAR(glm::length(m.normals[first[0]] - glm::dvec3(0.6, 0, 0.8)), 0, 1e-6);
+  EXPECT_NEAR(glm::length(m.normals[first[1]] - glm::dvec3(-0.6, 0, 0.8)), 0, 1e-6);
+  EXPECT_NEAR(glm::length(m.normals[first[2]] - glm::dvec3(-0.6, 0, 0.8)), 0, 1e-6);
+  // The second face's corners: at 1 and 3 the area-weighted mean of both faces (each face's
+  // cross product is twice its area times its normal), at 4 the second face's normal alone.
+  const glm::dvec3 p1(-1, -1, 0), p2(1, -1, 0), p3(1, 1, 0), p4(-1, 1, 1);
+  const glm::dvec3 a = glm::cross(p2 - p1, p3 - p1), b = glm::cross(p3 - p1, p4 - p1);
+  const auto& second = m.triangles[1];
+  EXPECT_NEAR(glm::length(m.normals[second[0]] - glm::normalize(a + b)), 0, 1e-12);
+  EXPECT_NEAR(glm::length(m.normals[second[1]] - glm::normalize(a + b)), 0, 1e-12);
+  EXPECT_NEAR(glm::length(m.normals[second[2]] - glm::normalize(b)), 0, 1e-12);
+}
+
 TEST(Obj, NormalsFromGeometryWhenAbsent) {
   Mesh m = octa_sphere(1);
   compute_normals(m);

@@ -104,6 +104,26 @@ TEST(SceneParse, DeepNestingIsRefusedBeforeParsing) {
   }
 }
 
+TEST(SceneParse, ANulByteIsMalformedNotTheEndOfTheFile) {
+  // nlohmann's lexer reads a NUL byte as the end of its input: a good scene followed by "\0" and
+  // anything loaded without a word (found by review, 2026-12-07). Refused with the NUL's line.
+  const std::string good =
+      "{\n\"camera\": {\"type\": \"orthographic\", \"extents\": [-2, 2, -2, 2]},\n"
+      "\"lights\": [],\n\"meshes\": [{\"generator\": \"quad\"}]\n}\n";
+  EXPECT_NO_THROW(parse_scene(good, "good.json", kData));
+  const std::string after = good + '\0' + "garbage";
+  try {
+    parse_scene(after, "nul.json", kData);
+    FAIL() << "a scene followed by a NUL byte and garbage loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), "nul.json");
+    EXPECT_EQ(e.line(), 6);
+    EXPECT_NE(e.problem().find("a NUL byte (0x00) at byte " + std::to_string(good.size() + 1)),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SceneParse, MissingFileIsAnError) {
   const SceneError e = load_error(kData / "no_such_scene.json");
   EXPECT_NE(e.problem().find("cannot open"), std::string::npos);

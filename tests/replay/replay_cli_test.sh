@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command and a
-# refused value each give a message naming the file (and the word offset and the device's
-# error for the stream errors) and a non-zero exit, as does a command asking for more than
-# replay's memory limit (unless an earlier command fails first) and a file over the limit of a
-# command file; a good stream replays and hashes. And `tinyphong record`'s outputs: two scenes
-# of one name are refused, a failed write keeps the old stream, an existing PATH.part is refused
-# and left alone, a symbolic link stays a link and the file it names gets the stream.
+# `tinyphong replay` on bad input: a partial word, an unknown opcode, a truncated command, a stream
+# cut at a command's boundary (no end_frame at its end) and a refused value each give a message
+# naming the file (and the word offset and the device's error for the stream errors) and a
+# non-zero exit, as does a command asking for more than replay's memory limit (unless an earlier
+# command fails first) and a file over the limit of a command file; a good stream replays and
+# hashes. And `tinyphong record`'s outputs: two scenes of one name are refused, a failed write
+# keeps the old stream, an existing PATH.part is refused and left alone, a symbolic link stays a
+# link and the file it names gets the stream.
 # Usage: replay_cli_test.sh TINYPHONG SCENES_DIR
 set -euo pipefail
 tp=$1 scenes=$2
@@ -43,6 +44,15 @@ expect unknown-opcode "$work/opcode.tpcmd" "opcode.tpcmd: command unknown opcode
 words=$(( $(stat -c %s "$work/good.tpcmd") / 4 ))
 head -c $(( 4 * (words - 2) )) "$work/good.tpcmd" > "$work/cut.tpcmd"
 expect truncated "$work/cut.tpcmd" "cut.tpcmd: command draw at word $(( words - 4 )) failed: bad command length"
+
+# Streams cut at a command's boundary ran, and their frame so far passed for the frame (found by
+# review, 2026-12-07): without the last command, end_frame, and with the first command alone.
+head -c -4 "$work/good.tpcmd" > "$work/no-end.tpcmd"
+expect no-end-frame "$work/no-end.tpcmd" \
+  "no-end.tpcmd: the stream ends with draw at word $(( words - 4 )), not end_frame: no whole frame \(a truncated file\?\)"
+head -c 20 "$work/good.tpcmd" > "$work/viewport-only.tpcmd"
+expect viewport-only "$work/viewport-only.tpcmd" \
+  "viewport-only.tpcmd: the stream ends with set_viewport at word 0, not end_frame"
 
 # A refused value: the viewport's width (word 1) = 5000.
 cp "$work/good.tpcmd" "$work/wide.tpcmd"

@@ -1,8 +1,15 @@
 // The server's device source: the specular-only view renders the specular part alone for the
-// device and the reference, keeps the material the user set, and survives a scene change.
+// device and the reference, keeps the material the user set, and survives a scene change; it
+// offers only the scenes a client can select, and refuses a scene file that is no longer one.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdint>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "server/device_source.hpp"
@@ -63,6 +70,35 @@ TEST(DeviceSource, SpecularOnlyRendersTheSpecularPartAlone) {
   s.specular_only = false;
   ASSERT_TRUE(src.apply(s).ok());
   EXPECT_EQ(src.render(0.0).image.rgb, full.image.rgb);
+}
+
+// Found by review, 2026-12-07: the page was offered a scene whose name is longer than set_scene
+// takes (64 bytes) or not UTF-8, which the server then refused; and a scene file replaced by a
+// FIFO blocked the render loop in its read, every client and the server's stop with it.
+TEST(DeviceSource, OffersOnlySelectableScenesAndReadsOnlyRegularFiles) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("tp-scenes-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const std::string name : {"triangle", "sphere-32"})
+    fs::copy_file(fs::path(TP_SCENES_DIR) / (name + ".json"), dir / (name + ".json"));
+  const std::string long_name(65, 'a'), not_utf8 = "bad\xff";
+  fs::copy_file(dir / "triangle.json", dir / (long_name + ".json"));
+  fs::copy_file(dir / "triangle.json", dir / (not_utf8 + ".json"));
+  fs::copy_file(dir / "triangle.json", dir / (std::string(64, 'b') + ".json"));
+
+  DeviceSource src(dir, "triangle", 32, 32, "gouraud");
+  const std::vector<std::string> offered = src.scenes();
+  EXPECT_EQ(offered, (std::vector<std::string>{std::string(64, 'b'), "sphere-32", "triangle"}));
+
+  fs::remove(dir / "sphere-32.json");
+  ASSERT_EQ(::mkfifo((dir / "sphere-32.json").c_str(), 0600), 0);
+  const Result r = src.load_scene("sphere-32");  // returns: it does not open the FIFO
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("scene 'sphere-32' is no longer a regular file"), std::string::npos)
+      << r.message();
+  EXPECT_TRUE(src.load_scene("triangle").ok());
+  fs::remove_all(dir);
 }
 
 }  // namespace

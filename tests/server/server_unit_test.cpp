@@ -132,6 +132,15 @@ TEST(Control, RejectsEachMalformedMessageByName) {
     EXPECT_FALSE(r.command.has_value()) << msg;
     EXPECT_NE(r.error.find(why), std::string::npos) << msg << " -> " << r.error;
   }
+  // A NUL byte ended the JSON, and what followed it was never read: {"type":"step"}\0 and more
+  // was a step (found by review, 2026-12-07).
+  const std::string after_nul =
+      std::string("{\"type\":\"step\"}") + '\0' + "{\"type\":\"set_budget\",\"levels\":6}";
+  for (const std::string& msg : {after_nul, after_nul.substr(0, 16)}) {
+    const ParseResult r = parse_control(msg);
+    EXPECT_FALSE(r.command.has_value());
+    EXPECT_EQ(r.error, "malformed JSON: a NUL byte (0x00) at byte 16");
+  }
   ParseResult big = parse_control(std::string(kControlMessageLimit + 1, ' '));
   EXPECT_NE(big.error.find("too large"), std::string::npos);
 }
