@@ -276,9 +276,11 @@ StreamReplay::StreamReplay(std::span<const std::uint32_t> words, std::size_t max
 
 std::vector<std::uint32_t> read_command_file(const std::string& path) {
   std::string bytes;
-  switch (read_text_file(path, kMaxCommandFileBytes, bytes)) {
+  int os_error = 0;
+  switch (read_text_file(path, kMaxCommandFileBytes, bytes, &os_error)) {
     case ReadResult::ok: break;
-    case ReadResult::cannot_open: throw std::runtime_error(path + ": cannot open or read");
+    case ReadResult::cannot_open:
+      throw std::runtime_error(path + ": cannot open or read" + os_reason(os_error));
     case ReadResult::too_large:
       throw std::runtime_error(path + ": larger than " + std::to_string(kMaxCommandFileBytes) +
                                " bytes (the limit of a command file)");

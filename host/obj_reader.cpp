@@ -363,9 +363,11 @@ Mesh load_obj(const std::filesystem::path& file) {
                     (ec ? " (" + ec.message() + ")" : std::string()));
   }
   std::string text;
-  switch (read_text_file(file, kMaxObjFileBytes, text)) {
+  int os_error = 0;
+  switch (read_text_file(file, kMaxObjFileBytes, text, &os_error)) {
     case ReadResult::ok: break;
-    case ReadResult::cannot_open: throw MeshError("cannot read mesh file " + file.string());
+    case ReadResult::cannot_open:
+      throw MeshError("cannot read mesh file " + file.string() + os_reason(os_error));
     case ReadResult::too_large:
       refuse(file.string(), "larger than " + std::to_string(kMaxObjFileBytes) +
                                 " bytes (the limit of an OBJ file)");

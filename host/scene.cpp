@@ -431,9 +431,11 @@ Scene parse_scene(std::string_view text, const std::string& file,
 
 Scene load_scene(const std::filesystem::path& file) {
   std::string text;
-  switch (read_text_file(file, kMaxSceneFileBytes, text)) {
+  int os_error = 0;
+  switch (read_text_file(file, kMaxSceneFileBytes, text, &os_error)) {
     case ReadResult::ok: break;
-    case ReadResult::cannot_open: throw SceneError(file.string(), 0, "", "cannot open scene file");
+    case ReadResult::cannot_open:
+      throw SceneError(file.string(), 0, "", "cannot open scene file" + os_reason(os_error));
     case ReadResult::too_large: throw_too_large(file.string());
   }
   return parse_scene(text, file.string(), file.parent_path());

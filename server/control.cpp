@@ -253,8 +253,15 @@ ParseResult parse_control(const std::string& text) {
       twice = parsed.get<std::string>();
     return true;
   };
-  json j = json::parse(text, note_keys, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return {std::nullopt, "malformed JSON"};
+  json j;
+  try {
+    j = json::parse(text, note_keys);
+  } catch (const json::exception& e) {
+    // The library's own words name the problem and where: "number overflow parsing '1e400'",
+    // "syntax error while parsing value - invalid literal; last read: 'tru'" (a bare "malformed
+    // JSON" named neither; found by review, 2026-12-07).
+    return {std::nullopt, "malformed JSON: " + clip_utf8(e.what(), 200)};
+  }
   if (!j.is_object()) return {std::nullopt, "message must be a JSON object"};
   const std::string duplicate = "duplicate key '" + clip_utf8(twice, 64) + "'";
   if (twice == "type") return {std::nullopt, duplicate};

@@ -125,8 +125,11 @@ TEST(SceneParse, ANulByteIsMalformedNotTheEndOfTheFile) {
 }
 
 TEST(SceneParse, MissingFileIsAnError) {
+  // With the system's reason: "cannot open scene file" alone did not say why (found by review,
+  // 2026-12-07).
   const SceneError e = load_error(kData / "no_such_scene.json");
-  EXPECT_NE(e.problem().find("cannot open"), std::string::npos);
+  EXPECT_EQ(e.problem(), "cannot open scene file (No such file or directory)");
+  EXPECT_EQ(load_error(kData).problem(), "cannot open scene file (Is a directory)");
 }
 
 TEST(SceneParse, AnObjNameTheSystemRefusesIsTheScenesError) {
