@@ -13,6 +13,7 @@
 //                    [--images DIR]
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -72,11 +73,24 @@ void add_depth_buffer_option(CLI::App* cmd, SceneOptions& o) {
                 "pixel: enough for a closed convex mesh, docs/TARGET.md)");
 }
 
-// An angle in degrees: finite, and small enough that its radians keep their precision.
+// A number written in decimal: "30", "-12.5", "+45", "1e3". CLI11's own reading also took
+// hexadecimal ("0x10", "0x1p4") and a leading space (" 16"), text --seed refuses (found by
+// review, 2026-12-07).
+std::optional<double> decimal(std::string_view text) {
+  const bool plus = text.starts_with('+');
+  if (plus) text.remove_prefix(1);
+  if (text.empty() || (plus && text.front() == '-')) return std::nullopt;
+  double v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+// An angle in degrees: decimal, finite, and small enough that its radians keep their precision.
 const CLI::Validator kAngle(
     [](std::string& text) -> std::string {
-      double v = 0;
-      if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || std::abs(v) > 1e6)
+      const std::optional<double> v = decimal(text);
+      if (!v || !std::isfinite(*v) || std::abs(*v) > 1e6)
         return "an angle in degrees, finite and within ±1e6, got '" + text + "'";
       return "";
     },

@@ -30,7 +30,9 @@ tri=$scenes/triangle.json
 for size in 4294967297x5 4294967808x4294967808 10x20junk 0x10 4097x10 10x -5x5 x 10x+5 " 10x10"; do
   refused "--size: expected WIDTHxHEIGHT, each 1..4096, got '$size'" render "$tri" --size "$size"
 done
-for angle in nan -nan inf -inf 1e308 1000001; do
+# Decimal only: CLI11's own reading took hexadecimal and a leading space (found by review,
+# 2026-12-07), text --seed refuses.
+for angle in nan -nan inf -inf 1e308 1000001 0x10 0x1p4 " 16" "16 " +-5 ++5 + ""; do
   refused "--rotate: an angle in degrees, finite and within ±1e6, got '$angle'" \
     reference "$tri" --rotate "$angle"
   refused "--rotate: an angle in degrees" render "$tri" --rotate "$angle"
@@ -41,6 +43,10 @@ done
   { echo "FAIL: --size 4096x16 --rotate -1e6 refused"; fail=1; }
 "$tp" render "$tri" --size 16X8 --rotate 30.5 -o "$work/ok.png" >/dev/null ||
   { echo "FAIL: --size 16X8 --rotate 30.5 refused"; fail=1; }
+for angle in +45 -12.5 1e3 .5; do
+  "$tp" render "$tri" --size 16x8 --rotate "$angle" -o "$work/ok.png" >/dev/null ||
+    { echo "FAIL: --rotate $angle refused"; fail=1; }
+done
 
 # A scene is checked unturned; turned 45 degrees this slab's corners (2.5 × 10,000 units from the
 # axis on x and z) reach 35,355 in eye space, beyond the device's Q15.16. render named no file,
