@@ -281,6 +281,8 @@ std::vector<std::uint32_t> read_command_file(const std::string& path) {
     case ReadResult::ok: break;
     case ReadResult::cannot_open:
       throw std::runtime_error(path + ": cannot open or read" + os_reason(os_error));
+    case ReadResult::not_regular:  // (not asked for: any file is read)
+      throw std::runtime_error(path + ": not a regular file");
     case ReadResult::too_large:
       throw std::runtime_error(path + ": larger than " + std::to_string(kMaxCommandFileBytes) +
                                " bytes (the limit of a command file)");

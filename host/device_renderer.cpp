@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "host/command_stream.hpp"
-#include "host/quoted.hpp"
+#include "host/quote_token.hpp"
 #include "host/to_fixed.hpp"
 
 namespace tp::host {
@@ -97,8 +97,8 @@ fw::Method method_from_name(std::string_view name) {
   for (const auto& m : method_names()) valid += (valid.empty() ? "" : ", ") + std::string(m.name);
   // Quoted with its control bytes as \xNN: a NUL in it ("phong\0x", sent by a client) ended
   // the message at the name (found by review, 2026-12-07).
-  throw std::invalid_argument("unknown shading method " + quoted(name, 64) + " (valid: " + valid +
-                              ")");
+  throw std::invalid_argument("unknown shading method " + quote_token(name, 64) +
+                              " (valid: " + valid + ")");
 }
 
 std::string_view fidelity_name(fw::Fidelity f) {

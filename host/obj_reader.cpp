@@ -1,5 +1,6 @@
 // OBJ files: a scan of our own for the limits and the numbers (file:line errors), then
 // tinyobjloader for the structure, then one mesh vertex per distinct (position, normal) pair.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -16,7 +17,7 @@
 #include <tiny_obj_loader.h>
 
 #include "host/meshes.hpp"
-#include "host/quoted.hpp"
+#include "host/quote_token.hpp"
 #include "host/text_file.hpp"
 
 namespace tp::host {
@@ -31,7 +32,7 @@ std::string at_line(const std::string& file, std::size_t line) {
   return file + ":" + std::to_string(line);
 }
 
-// How much of a token an error quotes (host/quoted.hpp).
+// How much of a token an error quotes (host/quote_token.hpp).
 constexpr std::size_t kQuotedBytes = 32;
 
 // tinyobjloader separates words by spaces and tabs only; so does the scan, so that both see the
@@ -69,7 +70,7 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     const auto named = [&] {
       return std::string(record) + " " +
              (k < 4 ? std::string(kFields[k]) : "value " + std::to_string(k + 1)) + " " +
-             quoted(token, kQuotedBytes);
+             quote_token(token, kQuotedBytes);
     };
     double value = 0;
     // from_chars takes no '+'; one sign at most ("+-1" is no number).
@@ -86,7 +87,7 @@ Record check_numbers(std::string_view record, std::string_view line, std::size_t
     if (ec != std::errc() || ptr != end) refuse(where, named() + " is not a number");
     if (!std::isfinite(value)) refuse(where, named() + " is not a finite number");
     if (std::abs(value) > std::numeric_limits<float>::max())
-      refuse(where, std::string(record) + " " + quoted(token, kQuotedBytes) +
+      refuse(where, std::string(record) + " " + quote_token(token, kQuotedBytes) +
                         " is beyond the single-precision range OBJ numbers are read in");
     if (k < 3) read.values[static_cast<std::size_t>(read.count++)] = value;
   }
@@ -116,7 +117,8 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
     const std::string_view field = corner.substr(
         start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
     if (kind > 2)
-      refuse(where, "face corner " + quoted(corner, kQuotedBytes) + " has more than three indices");
+      refuse(where,
+             "face corner " + quote_token(corner, kQuotedBytes) + " has more than three indices");
     const bool may_be_empty = kind == 1 && slash != std::string_view::npos;  // "v//vn"
     if (!(field.empty() && may_be_empty)) {
       long long index = 0;
@@ -126,7 +128,8 @@ void check_corner(std::string_view corner, std::size_t line, const std::string& 
           std::from_chars(field.data() + (plus ? 1 : 0), field.data() + field.size(), index);
       // "face corner '…': vertex index", built only for an error.
       const auto named = [&] {
-        return "face corner " + quoted(corner, kQuotedBytes) + ": " + kIndexKinds[kind] + " index";
+        return "face corner " + quote_token(corner, kQuotedBytes) + ": " + kIndexKinds[kind] +
+               " index";
       };
       if (ec != std::errc() || ptr != field.data() + field.size())
         refuse(where, named() + " is not an integer");
@@ -249,7 +252,7 @@ void compare_numbers(const std::vector<float>& parsed, const std::vector<Record>
 
 glm::dvec3 unit_normal(const tinyobj::attrib_t& attrib, int normal_index, const Tally& tally,
                        const std::string& file) {
-  if (normal_index < 0) return glm::dvec3(0, 0, 1);  // replaced by compute_normals
+  if (normal_index < 0) return glm::dvec3(0, 0, 1);  // replaced by compute_missing_normals
   const auto ni = static_cast<std::size_t>(3 * normal_index);
   const glm::dvec3 n(attrib.normals[ni], attrib.normals[ni + 1], attrib.normals[ni + 2]);
   if (!(glm::length(n) > 0)) {
@@ -260,7 +263,6 @@ glm::dvec3 unit_normal(const tinyobj::attrib_t& attrib, int normal_index, const 
   return glm::normalize(n);
 }
 
-// OBJ indexes positions and normals separately; one mesh vertex per distinct pair.
 // The normals of the vertices made from corners that give none (`f 1 2 3`, `f 1/2 3/4 5/6`): the
 // area-weighted mean of the faces around the vertex's position, as compute_normals gives a file
 // with no normals at all. The file's own normals are kept: a file that gave them on some faces
@@ -280,10 +282,10 @@ void compute_missing_normals(Mesh& m, const std::vector<int>& position_of,
   }
 }
 
+// OBJ indexes positions and normals separately; one mesh vertex per distinct pair.
 Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std::string& file) {
   const auto& attrib = reader.GetAttrib();
   Mesh m;
-  bool missing_normals = false;
   std::vector<int> position_of;  // per vertex of m: its "v" record
   std::vector<bool> missing;     // per vertex of m: made from corners without a normal
   std::map<std::pair<int, int>, std::uint32_t> index;
@@ -299,7 +301,6 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std:
         if (id.vertex_index < 0 || id.vertex_index >= nv)
           refuse(file, "face refers to a missing vertex");
         if (id.normal_index >= nn) refuse(file, "face refers to a missing normal");
-        if (id.normal_index < 0) missing_normals = true;
         auto it = index.find({id.vertex_index, id.normal_index});
         if (it == index.end()) {
           const auto vi = static_cast<std::size_t>(3 * id.vertex_index);
@@ -316,7 +317,7 @@ Mesh build_mesh(const tinyobj::ObjReader& reader, const Tally& tally, const std:
       m.triangles.push_back(tri);
     }
   }
-  if (missing_normals)
+  if (std::ranges::find(missing, true) != missing.end())
     compute_missing_normals(m, position_of, missing, static_cast<std::size_t>(nv));
   return m;
 }
@@ -364,10 +365,14 @@ Mesh load_obj(const std::filesystem::path& file) {
   }
   std::string text;
   int os_error = 0;
-  switch (read_text_file(file, kMaxObjFileBytes, text, &os_error)) {
+  // A regular file, checked again on the open descriptor: one put in place of the file after the
+  // check above (a FIFO) would block the read.
+  switch (read_text_file(file, kMaxObjFileBytes, text, &os_error, Accept::regular_file)) {
     case ReadResult::ok: break;
     case ReadResult::cannot_open:
       throw MeshError("cannot read mesh file " + file.string() + os_reason(os_error));
+    case ReadResult::not_regular:
+      throw MeshError("mesh file is not a regular file: " + file.string());
     case ReadResult::too_large:
       refuse(file.string(), "larger than " + std::to_string(kMaxObjFileBytes) +
                                 " bytes (the limit of an OBJ file)");

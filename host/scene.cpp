@@ -429,13 +429,15 @@ Scene parse_scene(std::string_view text, const std::string& file,
   return read_scene(r, j);
 }
 
-Scene load_scene(const std::filesystem::path& file) {
+Scene load_scene(const std::filesystem::path& file, Accept accept) {
   std::string text;
   int os_error = 0;
-  switch (read_text_file(file, kMaxSceneFileBytes, text, &os_error)) {
+  switch (read_text_file(file, kMaxSceneFileBytes, text, &os_error, accept)) {
     case ReadResult::ok: break;
     case ReadResult::cannot_open:
       throw SceneError(file.string(), 0, "", "cannot open scene file" + os_reason(os_error));
+    case ReadResult::not_regular:
+      throw SceneError(file.string(), 0, "", "not a regular file (a FIFO, a device or a folder)");
     case ReadResult::too_large: throw_too_large(file.string());
   }
   return parse_scene(text, file.string(), file.parent_path());

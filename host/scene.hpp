@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/meshes.hpp"
+#include "host/text_file.hpp"
 
 namespace tp::host {
 
@@ -124,8 +125,9 @@ struct EyeLight {
   glm::dvec3 colour{1, 1, 1};
 };
 
-// Read and validate a scene file; throws SceneError.
-Scene load_scene(const std::filesystem::path& file);
+// Read and validate a scene file; throws SceneError. Accept::regular_file refuses anything but a
+// regular file without blocking on it (the server's scenes folder: host/text_file.hpp).
+Scene load_scene(const std::filesystem::path& file, Accept accept = Accept::any_file);
 // Same from text; `file` names it in errors, relative OBJ paths resolve against base_dir.
 Scene parse_scene(std::string_view text, const std::string& file,
                   const std::filesystem::path& base_dir);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/types.hpp"
+#include "host/quote_token.hpp"
 #include "host/reference.hpp"
 #include "host/scene.hpp"
 
@@ -103,13 +104,13 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
     if (std::string name = e.path().stem().string(); selectable(name))
       scene_names_.push_back(std::move(name));
     else
-      std::cerr << "tinyphong-server: " << e.path().string()
+      std::cerr << "tinyphong-server: " << host::quote_token(e.path().string(), 4096)
                 << " not offered: a scene's name is 1 to 64 bytes of UTF-8 (set_scene)\n";
   }
   std::sort(scene_names_.begin(), scene_names_.end());
   if (std::find(scene_names_.begin(), scene_names_.end(), scene) == scene_names_.end())
     throw std::runtime_error("no scene '" + scene + "' in " + dir_.string());
-  host::Scene sc = host::load_scene(dir_ / (scene + ".json"));
+  host::Scene sc = host::load_scene(dir_ / (scene + ".json"), host::Accept::regular_file);
   if (width > 0) sc.width = width;
   if (height > 0) sc.height = height;
   if (!method.empty()) sc.method = method;
@@ -151,15 +152,12 @@ Result DeviceSource::apply(const ViewSettings& s) {
 Result DeviceSource::load_scene(const std::string& name) {
   if (std::find(scene_names_.begin(), scene_names_.end(), name) == scene_names_.end())
     return Result::failure("unknown scene '" + name + "'");
-  const std::filesystem::path file = dir_ / (name + ".json");
-  // A regular file only, as listed at start: a FIFO put in its place blocked the render loop in
-  // the read, and with it every client and the server's stop (found by review, 2026-12-07).
-  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
-    return Result::failure("scene '" + name + "' is no longer a regular file in the scenes folder");
   try {
     // The viewer keeps the method, budget and view it shows; the scene file's own method and
-    // budget are for the CLI.
-    host::Scene sc = host::load_scene(file);
+    // budget are for the CLI. A regular file only, as listed at start: a FIFO put in its place
+    // blocked the render loop in the read, and with it every client and the server's stop (found
+    // by review, 2026-12-07).
+    host::Scene sc = host::load_scene(dir_ / (name + ".json"), host::Accept::regular_file);
     sc.method = settings_.method;
     sc.budget = settings_.budget;
     return install(std::move(sc), name, settings_.specular_only);

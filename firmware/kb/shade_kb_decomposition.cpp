@@ -38,8 +38,9 @@ bool KbDecompositionMethod::setup(const Triangle& tri, const ShadeContext& ctx) 
   return true;
 }
 
-// Span setup: N's circle, then per term the angles u, v at the span ends (skipping the terms
-// that are zero over the whole span) and the forward-differenced segments of f(u) and f(v).
+// Span setup: N's arc, then per term its circle (N's own while N moves; through the term's
+// direction where it does not), the angles u, v at the span ends (skipping the terms that are
+// zero over the whole span) and the forward-differenced segments of f(u) and f(v).
 inline void KbDecompositionMethod::prepare_span(const Span& s) {
   const int length = s.x1 - s.x0;
   const xpos_t xl = edge_x(*t_.tri, s.left), xr = edge_x(*t_.tri, s.right);

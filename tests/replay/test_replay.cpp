@@ -225,6 +225,20 @@ std::size_t required(std::uint32_t w, std::uint32_t h, std::uint32_t vertices = 
                                      fw::BufferCapacityCmd{vertices, indices}, m);
 }
 
+// A stream whose last command is not end_frame stops inside a frame, which `tinyphong replay`
+// refuses (a file cut at a command's boundary replayed; found by review, 2026-12-07); an empty one
+// has no frame; one that ends with end_frame, after one frame or after two, is whole.
+TEST(ReplayFile, AWholeFrameEndsWithEndFrame) {
+  const std::vector<std::uint32_t> end{fw::command_header(fw::Opcode::kEndFrame, 0)};
+  EXPECT_EQ(unfinished_frame({}), "the stream is empty: no frame");
+  EXPECT_EQ(unfinished_frame(joined({viewport(16, 16), method(fw::Method::kFlat)})),
+            "the stream ends with set_method at word 5, not end_frame: no whole frame (a "
+            "truncated file?)");
+  EXPECT_EQ(unfinished_frame(joined({viewport(16, 16), end})), std::nullopt);
+  EXPECT_EQ(unfinished_frame(joined({viewport(16, 16), end, viewport(8, 8), end})), std::nullopt);
+  EXPECT_NE(unfinished_frame(joined({viewport(16, 16), end, viewport(8, 8)})), std::nullopt);
+}
+
 // The block follows the layout in stream order: a wide viewport and then a tall one need the
 // larger of the two, not a viewport as wide as the one and as tall as the other (16 Mi pixels).
 TEST(ReplayMemory, FollowsTheLayoutInStreamOrder) {

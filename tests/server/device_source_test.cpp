@@ -3,13 +3,16 @@
 // offers only the scenes a client can select, and refuses a scene file that is no longer one.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "server/device_source.hpp"
@@ -72,14 +75,24 @@ TEST(DeviceSource, SpecularOnlyRendersTheSpecularPartAlone) {
   EXPECT_EQ(src.render(0.0).image.rgb, full.image.rgb);
 }
 
+// A scenes folder of the test's own, removed however the test ends.
+struct TempFolder {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("tp-scenes-" + std::to_string(::getpid()));
+  TempFolder() {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempFolder() { std::filesystem::remove_all(path); }
+};
+
 // Found by review, 2026-12-07: the page was offered a scene whose name is longer than set_scene
 // takes (64 bytes) or not UTF-8, which the server then refused; and a scene file replaced by a
 // FIFO blocked the render loop in its read, every client and the server's stop with it.
 TEST(DeviceSource, OffersOnlySelectableScenesAndReadsOnlyRegularFiles) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("tp-scenes-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const TempFolder folder;
+  const fs::path& dir = folder.path;
   for (const std::string name : {"triangle", "sphere-32"})
     fs::copy_file(fs::path(TP_SCENES_DIR) / (name + ".json"), dir / (name + ".json"));
   const std::string long_name(65, 'a'), not_utf8 = "bad\xff";
@@ -91,14 +104,22 @@ TEST(DeviceSource, OffersOnlySelectableScenesAndReadsOnlyRegularFiles) {
   const std::vector<std::string> offered = src.scenes();
   EXPECT_EQ(offered, (std::vector<std::string>{std::string(64, 'b'), "sphere-32", "triangle"}));
 
-  fs::remove(dir / "sphere-32.json");
-  ASSERT_EQ(::mkfifo((dir / "sphere-32.json").c_str(), 0600), 0);
-  const Result r = src.load_scene("sphere-32");  // returns: it does not open the FIFO
+  const fs::path fifo = dir / "sphere-32.json";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // Should the load block on the FIFO after all, a writer opened and closed after a while ends
+  // it with an empty file, so that the test fails on the message instead of hanging.
+  std::thread unblock([&fifo] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+  });
+  const Result r = src.load_scene("sphere-32");
+  unblock.join();
   EXPECT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("scene 'sphere-32' is no longer a regular file"), std::string::npos)
+  EXPECT_NE(r.message().find("not a regular file (a FIFO, a device or a folder)"),
+            std::string::npos)
       << r.message();
   EXPECT_TRUE(src.load_scene("triangle").ok());
-  fs::remove_all(dir);
 }
 
 }  // namespace
