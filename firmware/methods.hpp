@@ -392,6 +392,12 @@ class GouraudSubdividedMethod final : public ShadingMethod {
     bool stepped = false;     // steps exact (else every pixel from at())
     bool degenerate = false;  // area2 <= 0 after rounding: its colour is constant
     std::int64_t constant[3];
+    // Per channel, its darkest corner's colour and how far above it the brightest is, in the
+    // steps' format: the colours a pixel may take. A pixel of the triangle can lie just outside
+    // its sub-triangle (the midpoints are rounded to 1/16 pixel off the outer edges), where a
+    // sliver's plane extrapolates far: black below an ambient floor (found by review, 2026-12-07).
+    std::int64_t lowest[3];
+    std::uint64_t range[3];
   };
   void part_start(int k, std::int32_t x, std::int32_t y, std::int64_t c[3]) const;
 

@@ -44,6 +44,10 @@ bool GouraudSubdividedMethod::setup(const Triangle& tri, const ShadeContext& ctx
     for (int ch = 0; ch < 3; ++ch) {
       const std::int64_t c0 = lit[corner[0]].c[ch], c1 = lit[corner[1]].c[ch],
                          c2 = lit[corner[2]].c[ch];
+      const std::int64_t low = c0 < c1 ? c0 : c1, high = c0 < c1 ? c1 : c0;
+      const std::int64_t lowest = c2 < low ? c2 : low, highest = c2 > high ? c2 : high;
+      p.lowest[ch] = lowest << ScreenPlane::kStepFrac;
+      p.range[ch] = static_cast<std::uint64_t>(highest - lowest) << ScreenPlane::kStepFrac;
       if (p.degenerate) {
         p.constant[ch] = fx::idiv(c0 + c1 + c2, 3);
         continue;
@@ -71,7 +75,7 @@ void GouraudSubdividedMethod::part_start(int k, std::int32_t x, std::int32_t y,
 
 void GouraudSubdividedMethod::shade_span(const Span& s, Rgb8* out) {
   constexpr int f = 30 + ScreenPlane::kStepFrac;
-  constexpr std::int64_t kTop = std::int64_t{1} << f, kHalf = std::int64_t{1} << (f - 1);
+  constexpr std::int64_t kHalf = std::int64_t{1} << (f - 1);
   const ShadeVertex* m = part_[3].tri.v;  // m01, m12, m20
   const std::int64_t px = 16 * std::int64_t{s.x0} + 8, py = 16 * std::int64_t{s.y} + 8;
   std::int64_t e[3], de[3];  // the inner edges' functions at the pixel and their steps in x
@@ -83,6 +87,8 @@ void GouraudSubdividedMethod::shade_span(const Span& s, Rgb8* out) {
   }
   int current = -1;
   std::int64_t c[3] = {0, 0, 0};
+  std::int64_t lowest[3] = {0, 0, 0};  // the current part's (Part::lowest, Part::range)
+  std::uint64_t range[3] = {0, 0, 0};
   for (std::int32_t x = s.x0; x < s.x1; ++x) {
     // Beyond m01→m12 lies corner 1, beyond m12→m20 corner 2, beyond m20→m01 corner 0.
     const int k = e[0] < 0 ? 1 : (e[1] < 0 ? 2 : (e[2] < 0 ? 0 : 3));
@@ -91,9 +97,17 @@ void GouraudSubdividedMethod::shade_span(const Span& s, Rgb8* out) {
     } else {
       part_start(k, x, s.y, c);
       current = k;
+      for (int ch = 0; ch < 3; ++ch) {
+        lowest[ch] = part_[k].lowest[ch];
+        range[ch] = part_[k].range[ch];
+      }
     }
     const auto level = [&](int ch) {
-      const std::int64_t v = c[ch] < 0 ? 0 : (c[ch] > kTop ? kTop : c[ch]);
+      // Held within the corners' colours, so within [0, 1]: one unsigned comparison where it is
+      // (the difference taken modulo 2^64, below the lowest it is above any range).
+      std::int64_t v = c[ch];
+      if (static_cast<std::uint64_t>(v) - static_cast<std::uint64_t>(lowest[ch]) > range[ch])
+        v = v < lowest[ch] ? lowest[ch] : lowest[ch] + static_cast<std::int64_t>(range[ch]);
       return static_cast<std::uint8_t>((255 * v + kHalf) >> f);
     };
     *out++ = Rgb8{level(0), level(1), level(2)};

@@ -429,6 +429,47 @@ TEST(Registry, BishopWeimerFiniteIsBishopWeimerWithEverythingAtInfinity) {
   EXPECT_EQ(compared, 20);  // the teapot's four are perspective
 }
 
+// Subdivided Gouraud interpolates its sub-triangles' lit corners, so no pixel may fall below the
+// ambient floor that every lit colour has. A pixel just outside its sub-triangle (the midpoints
+// rounded to 1/16 pixel off the outer edges) took a sliver's plane extrapolated to black (found by
+// review, 2026-12-07: a small teapot turned by 3 degrees, pixel (144, 94)).
+TEST(Registry, SubdividedGouraudStaysAboveTheAmbientFloor) {
+  Scene s = parse_scene(R"({
+    "camera": {"type": "perspective", "position": [0.5, 0.7, 7], "target": [0, 0, 0],
+               "fov_y": 70, "near": 0.1, "far": 100},
+    "lights": [{"type": "directional", "direction": [1, 1.5, 1]},
+               {"type": "point", "position": [0, 0, 3], "colour": [0.5, 0.5, 0.5]}],
+    "material": {"colour": [0.2, 0.4, 1.0], "ka": 0.1, "kd": 0.6, "ks": 0.4, "n": 20},
+    "meshes": [{"generator": "teapot", "params": {"tessellation": 3},
+                "transform": {"translate": [-1.5, 1.5, -0.3], "scale": 0.25,
+                              "rotate": {"axis": [1, 2, 3], "degrees": 79}}}]})",
+                        "small-teapot.json", TP_SCENES_DIR);
+  s.width = 400;
+  s.height = 300;
+  Scene ambient = s;
+  ambient.material.kd = ambient.material.ks = 0;
+  int checked = 0;
+  for (const double degrees : {0.0, 3.0, 100.0, 211.0}) {
+    SCOPED_TRACE(degrees);
+    const double radians = degrees * 3.14159265358979323846 / 180;
+    s.method = "gouraud-subdivided";
+    ambient.method = "gouraud";
+    DeviceRenderer device(s.width, s.height), floor_device(s.width, s.height);
+    device.set_scene(s);
+    floor_device.set_scene(ambient);
+    const DeviceFrame f = device.render(radians), floor = floor_device.render(radians);
+    ASSERT_EQ(f.covered, floor.covered);
+    for (std::size_t i = 0; i < f.covered.size(); ++i) {
+      if (!f.covered[i]) continue;
+      ++checked;
+      for (std::size_t ch = 0; ch < 3; ++ch)
+        ASSERT_GE(f.rgb[3 * i + ch], floor.rgb[3 * i + ch])
+            << "pixel " << i % 400 << ", " << i / 400;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
 // The host's list is the registry's, and every row's name parses back to its id.
 TEST(Registry, TheHostListsEveryRow) {
   ASSERT_EQ(method_names().size(), std::size(fw::kMethodTable));
