@@ -18,10 +18,11 @@ namespace tp::host {
 
 enum class ReadResult { ok, cannot_open, too_large, not_regular };
 
-// What a reader takes: any file it can open (the CLI reads `render <(…)`, a pipe), or a regular
-// file alone, checked on the open descriptor itself: a FIFO put in place of a file between a check
-// by name and the open blocked the opening thread (the server's render loop; found by review,
-// 2026-12-07). The open does not block, whatever the file is.
+// What a reader takes: any file it can open (the CLI reads `render <(…)`, a pipe, and waits on a
+// FIFO as `cat` does), or a regular file alone, checked on the open descriptor itself: a FIFO put
+// in place of a file between a check by name and the open blocked the opening thread (the
+// server's render loop; found by review, 2026-12-07). For a regular file alone the open does not
+// block, whatever the file is.
 enum class Accept { any_file, regular_file };
 
 namespace detail {
@@ -40,25 +41,38 @@ ReadResult read_blocks(std::uintmax_t max_bytes, std::string& text, ReadBlock re
   }
 }
 
+// An open descriptor, closed however the read ends (a full memory throws from the append), the
+// reason of a failed read kept.
+class Descriptor {
+ public:
+  explicit Descriptor(int fd) : fd_(fd) {}
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  ~Descriptor() {
+    if (fd_ < 0) return;
+    const int saved = errno;
+    ::close(fd_);
+    errno = saved;
+  }
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
 inline ReadResult read_regular_file(const std::filesystem::path& file, std::uintmax_t max_bytes,
                                     std::string& text) {
-  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return ReadResult::cannot_open;
+  const Descriptor fd(::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  if (fd.get() < 0) return ReadResult::cannot_open;
   struct stat st {};
-  ReadResult r = ReadResult::not_regular;
-  if (::fstat(fd, &st) != 0)
-    r = ReadResult::cannot_open;
-  else if (S_ISREG(st.st_mode))
-    r = read_blocks(max_bytes, text, [fd](char* block, std::size_t size) -> long {
-      for (;;) {
-        const ssize_t n = ::read(fd, block, size);
-        if (n >= 0 || errno != EINTR) return static_cast<long>(n);
-      }
-    });
-  const int saved = errno;
-  ::close(fd);
-  errno = saved;
-  return r;
+  if (::fstat(fd.get(), &st) != 0) return ReadResult::cannot_open;
+  if (!S_ISREG(st.st_mode)) return ReadResult::not_regular;
+  return read_blocks(max_bytes, text, [&fd](char* block, std::size_t size) -> long {
+    for (;;) {
+      const ssize_t n = ::read(fd.get(), block, size);
+      if (n >= 0 || errno != EINTR) return static_cast<long>(n);
+    }
+  });
 }
 
 }  // namespace detail

@@ -25,9 +25,9 @@ using Counters = std::vector<std::pair<std::string, std::uint64_t>>;
 enum class FrameKind : std::uint16_t { device = 0, reference = 1 };
 enum class PixelFormat : std::uint16_t { rgb888 = 1 };
 
-// A JSON message's text for the WebSocket. Invalid UTF-8 in a string (which no message should
-// hold: clip_utf8 keeps quoted client text whole) becomes U+FFFD rather than an exception that
-// would end the server.
+// A JSON message's text for the WebSocket. Invalid UTF-8 in a string (clip_utf8 keeps quoted
+// client text whole, but the JSON library's parse errors quote the client's bytes as they came)
+// becomes U+FFFD rather than an exception that would end the server.
 std::string json_text(const nlohmann::json& j);
 
 // FNV-1a 64 over bytes: the frame checksum the page recomputes from the painted canvas.
