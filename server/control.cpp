@@ -103,7 +103,8 @@ Result get_string(const json& j, const char* k, std::optional<std::string>& out)
   if (!j.contains(k)) return Result::success();
   if (!j[k].is_string()) return field_error(k, "must be a string");
   auto s = j[k].get<std::string>();
-  if (s.empty() || s.size() > 64) return field_error(k, "must be 1 to 64 bytes");
+  if (s.empty() || s.size() > kMaxNameBytes)
+    return field_error(k, "must be 1 to " + std::to_string(kMaxNameBytes) + " bytes");
   out = s;
   return Result::success();
 }

@@ -18,6 +18,9 @@
 namespace tp::server {
 
 inline constexpr std::size_t kControlMessageLimit = 4096;  // bytes; larger → error reply
+// A name a message carries (a scene's, a method's): 1 to this many bytes. The scenes the server
+// offers keep to it too (server/device_source.cpp).
+inline constexpr std::size_t kMaxNameBytes = 64;
 // The viewer's own sizes, inside what the device accepts (fw::kMaxDimension); the exponent is
 // the device's own bound, the same one the scene reader states (1..fw::kMaxExponent).
 inline constexpr int kMinSize = 16, kMaxSize = 2048;

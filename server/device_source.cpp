@@ -14,6 +14,7 @@
 #include "host/quote_token.hpp"
 #include "host/reference.hpp"
 #include "host/scene.hpp"
+#include "server/control.hpp"
 
 namespace tp::server {
 
@@ -78,11 +79,12 @@ host::Scene with_settings(host::Scene sc, const ViewSettings& s) {
   return sc;
 }
 
-// A name a client can send back in set_scene (server/control.cpp): 1 to 64 bytes of valid UTF-8.
+// A name a client can send back in set_scene: valid UTF-8 of 1 to kMaxNameBytes bytes
+// (server/control.hpp).
 // The page was offered longer names and names in another encoding (shown with U+FFFD), which
 // the server then refused (found by review, 2026-12-07).
 bool selectable(const std::string& name) {
-  if (name.empty() || name.size() > 64) return false;
+  if (name.empty() || name.size() > kMaxNameBytes) return false;
   try {
     (void)nlohmann::json(name).dump();  // throws on invalid UTF-8
     return true;
@@ -105,7 +107,8 @@ DeviceSource::DeviceSource(std::filesystem::path scenes_dir, const std::string& 
       scene_names_.push_back(std::move(name));
     else
       std::cerr << "tinyphong-server: " << host::quote_token(e.path().string(), 4096)
-                << " not offered: a scene's name is 1 to 64 bytes of UTF-8 (set_scene)\n";
+                << " not offered: a scene's name is 1 to " << kMaxNameBytes
+                << " bytes of UTF-8 (set_scene)\n";
   }
   std::sort(scene_names_.begin(), scene_names_.end());
   if (std::find(scene_names_.begin(), scene_names_.end(), scene) == scene_names_.end())
