@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "host/standard_output.hpp"
 #include "tests/fixedpoint/measure.hpp"
 #include "tests/fixedpoint/measure_quat.hpp"
 #include "tests/fixedpoint/measure_trig.hpp"
@@ -22,10 +23,12 @@ int main(int argc, char** argv) {
                      return c.name.find(filter) != std::string::npos;
                    });
   if (argc > 2 || !any) {
+    const std::string why = argc > 2 ? "one FILTER at most, " + std::to_string(argc - 1) + " given"
+                                     : "'" + filter + "' names none";
     std::fprintf(stderr,
                  "usage: accuracy_fixedpoint [FILTER]: FILTER a part of a function's name,"
-                 " e.g. sqrt; '%s' names none\n",
-                 argc > 1 ? argv[1] : "");
+                 " e.g. sqrt; %s\n",
+                 why.c_str());
     return 2;
   }
   std::printf(
@@ -38,5 +41,5 @@ int main(int argc, char** argv) {
                 s.n, s.max_abs, s.mean_abs(), s.mean());
     std::fflush(stdout);
   }
-  return 0;
+  return tp::host::standard_output_written("accuracy_fixedpoint") ? 0 : 1;
 }

@@ -23,6 +23,7 @@
 #include "host/device_renderer.hpp"
 #include "host/scene.hpp"
 #include "host/size_text.hpp"
+#include "host/standard_output.hpp"
 
 int main(int argc, char** argv) {
   using namespace tp::host;
@@ -35,9 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--budget", budget,
                  "kb-adaptive's error budget in output levels (default: the scene's)")
-      ->check(CLI::Range(1, static_cast<int>(tp::fw::kMaxBudgetLevels)));
+      ->check(whole_number(1, tp::fw::kMaxBudgetLevels));
   app.add_option("--frames", frames, "render this many frames and print the median frame time")
-      ->check(CLI::Range(1, 100000));
+      ->check(whole_number(1, 100000));
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   try {
     Scene scene = load_scene(scene_file);
@@ -67,5 +68,5 @@ int main(int argc, char** argv) {
     std::cerr << "tinyphong-draw: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return standard_output_written("tinyphong-draw") ? 0 : 1;
 }

@@ -31,6 +31,7 @@
 #include "host/device_renderer.hpp"
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
+#include "host/standard_output.hpp"
 #include "kb_replay.hpp"
 #include "tables/cosn_reference.hpp"
 
@@ -206,7 +207,8 @@ int main(int argc, char** argv) {
   CLI::App app{"tinyphong-kb-bench: Kuijk-Blake time, error and setup-share tables"};
   int reps = 5;
   bool quick = false;
-  app.add_option("--reps", reps, "timing rounds (median taken)")->check(CLI::Range(1, 100));
+  app.add_option("--reps", reps, "timing rounds (median taken)")
+      ->check(tp::host::whole_number(1, 100));
   app.add_flag("--quick", quick, "one light count and no sweep (smoke run)");
   if (const std::optional<int> status = tp::host::parse_options(app, argc, argv)) return *status;
   const std::vector<std::string> scenes = {"sphere-32",       "sphere-40", "sphere-512",
@@ -236,5 +238,5 @@ int main(int argc, char** argv) {
   }
   if (!quick) exponent_sweep(scenes);
   diffuse_vs_cosine();
-  return 0;
+  return tp::host::standard_output_written("tinyphong-kb-bench") ? 0 : 1;
 }

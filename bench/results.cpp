@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "host/metrics.hpp"
 #include "host/scene.hpp"
 #include "host/size_text.hpp"
+#include "host/standard_output.hpp"
 
 namespace {
 
@@ -46,15 +48,33 @@ struct Row {
   std::uint64_t pixels = 0;
 };
 
-// One scene's table: every method (and the peer) in `reps` interleaved rounds. Throws on a scene
-// that does not load or fit the device.
-void print_scene(const std::string& name, const std::optional<Size>& resolution,
-                 const std::vector<std::string>& methods, int reps, const std::string& peer) {
+// A scene of scenes/ by name, at the resolution given: throws naming it if it does not load, or
+// does not fit the device (its checks, as a render's).
+Scene load_named_scene(const std::string& name, const std::optional<Size>& resolution) {
+  // A name, not a path: "../x" and "/etc/passwd" were joined to the folder and read.
+  if (name.find_first_of("/\\") != std::string::npos || name.starts_with('.'))
+    throw std::runtime_error("--scenes: '" + name +
+                             "' is not a scene name (a file of scenes/ without .json)");
   Scene scene = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
   if (resolution) {
     scene.width = resolution->width;
     scene.height = resolution->height;
   }
+  DeviceRenderer(scene.width, scene.height).set_scene(scene);
+  return scene;
+}
+
+// "%.4f" of a measure, or "–" where no pixel is covered in both images (Comparison::measured).
+std::string cell(const Comparison& c, const char* format, double value) {
+  if (!c.measured()) return "–";
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+// One scene's table: every method (and the peer) in `reps` interleaved rounds.
+void print_scene(const std::string& name, const Scene& scene,
+                 const std::vector<std::string>& methods, int reps, const std::string& peer) {
   DeviceRenderer device(scene.width, scene.height);
   device.set_scene(scene);
   const ReferenceFrame ref = device.render_reference(0.0, Interpolation::Phong);
@@ -105,9 +125,13 @@ void print_scene(const std::string& name, const std::optional<Size>& resolution,
   for (const std::string& m : shown) {
     const Row& r = rows[m];
     const double ms = median(times[m]);
-    std::printf("| %s | %.4f | %.1f | %.3f | %d | %.3f / %d | %.2f | %.2f |\n", m.c_str(),
-                r.phong.color_correctness, r.phong.psnr_db, r.phong.mean_abs, r.phong.max_abs,
-                r.angular.mean_abs, r.angular.max_abs, ms, ms / gouraud);
+    std::printf("| %s | %s | %s | %s | %s | %s / %s | %.2f | %.2f |\n", m.c_str(),
+                cell(r.phong, "%.4f", r.phong.color_correctness).c_str(),
+                cell(r.phong, "%.1f", r.phong.psnr_db).c_str(),
+                cell(r.phong, "%.3f", r.phong.mean_abs).c_str(),
+                cell(r.phong, "%.0f", r.phong.max_abs).c_str(),
+                cell(r.angular, "%.3f", r.angular.mean_abs).c_str(),
+                cell(r.angular, "%.0f", r.angular.max_abs).c_str(), ms, ms / gouraud);
   }
   std::printf("\n");
 }
@@ -123,7 +147,7 @@ int main(int argc, char** argv) {
   app.add_option("--methods", methods_arg, "comma-separated methods (default: all)")
       ->check(method_list_check());
   app.add_option("--reps", reps, "timing rounds per method (median taken)")
-      ->check(CLI::Range(1, 1000));
+      ->check(whole_number(1, 1000));
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--peer", peer, "also time a peer renderer in the same rounds")
       ->check(CLI::IsMember({std::string(kPeerName)}));
@@ -142,6 +166,16 @@ int main(int argc, char** argv) {
   if (std::find(methods.begin(), methods.end(), "gouraud") == methods.end())
     methods.insert(methods.begin(), "gouraud");  // the yardstick of every ratio
 
+  // Every scene is read and checked before any is measured: a bad name last in the list ended
+  // the run after the others' tables (minutes of rounds) with a partial report.
+  std::vector<Scene> loaded;
+  try {
+    for (const std::string& name : scenes) loaded.push_back(load_named_scene(name, resolution));
+  } catch (const std::exception& e) {
+    std::cerr << "tinyphong-results: " << e.what() << "\n";
+    return 1;
+  }
+
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
@@ -151,10 +185,11 @@ int main(int argc, char** argv) {
             << reps << " interleaved rounds).\n\n";
 
   try {
-    for (const std::string& name : scenes) print_scene(name, resolution, methods, reps, peer);
-  } catch (const std::exception& e) {  // a scene that does not load or does not fit the device
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+      print_scene(scenes[i], loaded[i], methods, reps, peer);
+  } catch (const std::exception& e) {  // the peer's error (PeerError)
     std::cerr << "tinyphong-results: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return standard_output_written("tinyphong-results") ? 0 : 1;
 }

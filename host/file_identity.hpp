@@ -11,6 +11,9 @@
 #include <system_error>
 #include <vector>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace tp::host {
 
 // True when both exist and are one file (the same device and inode). A file not written yet is
@@ -31,6 +34,16 @@ inline bool same_output(const std::filesystem::path& a, const std::filesystem::p
   };
   const std::filesystem::path fa = full(a), fb = full(b);
   return !e && fa == fb;
+}
+
+// Whether writing `path` writes to this process's standard output (`-o /dev/stdout`, or the file
+// that standard output was redirected to).
+// (By device and inode: std::filesystem::equivalent refuses pipes, "operation not supported".)
+inline bool is_standard_output(const std::filesystem::path& path) {
+  struct stat out {};
+  struct stat file {};
+  return !path.empty() && ::fstat(STDOUT_FILENO, &out) == 0 && ::stat(path.c_str(), &file) == 0 &&
+         out.st_dev == file.st_dev && out.st_ino == file.st_ino;
 }
 
 // A file a command reads, and how a refusal names it.

@@ -43,7 +43,9 @@ void write_image(const std::filesystem::path& file, int w, int h, OIIO::TypeDesc
 
 // Reads all pixels as `type`, keeping the first three channels (grey, with or without alpha, is
 // replicated). The size the file declares is checked before anything is allocated for it: a PNG
-// of some sixty bytes can declare 20000 × 20000 pixels.
+// of some sixty bytes can declare 20000 × 20000 pixels. The pixels must be stored as `type`:
+// read as 8-bit, a float image's NaN became 0, the background, and its values were rounded
+// without a word (found by review, 2026-12-08).
 template <class T>
 std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type, int& w, int& h) {
   auto in = OIIO::ImageInput::open(file.string());
@@ -59,6 +61,10 @@ std::vector<T> read_image(const std::filesystem::path& file, OIIO::TypeDesc type
                        " channels; at most " + std::to_string(kMaxImagePixels) +
                        " pixels of 1 to " + std::to_string(kMaxImageChannels) +
                        " channels are read");
+  if (spec.format != type)
+    throw ImageIoError("cannot read " + file.string() + ": its pixels are " + spec.format.c_str() +
+                       ", not " + type.c_str() +
+                       (type == OIIO::TypeDesc::UINT8 ? " (8-bit images, as render writes)" : ""));
   std::vector<T> all(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
                      static_cast<std::size_t>(nc));
   if (!in->read_image(0, 0, 0, nc, type, all.data()))

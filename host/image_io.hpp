@@ -21,7 +21,9 @@ inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 25;
 inline constexpr int kMaxImageChannels = 4;
 
 void write_png(const std::filesystem::path& file, const Image8& image);
-Image8 read_png(const std::filesystem::path& file);  // any 8-bit image OIIO reads; RGB kept
+// Any image OIIO reads whose pixels are stored as 8 bits (float or 16-bit ones are refused, not
+// converted); RGB kept. read_exr likewise takes float pixels only.
+Image8 read_png(const std::filesystem::path& file);
 void write_exr(const std::filesystem::path& file, const FloatImage& image);
 FloatImage read_exr(const std::filesystem::path& file);
 

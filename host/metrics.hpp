@@ -20,6 +20,10 @@ struct Comparison {
   double psnr_db = 0;            // 10·log10(255²/MSE), MSE over channels; +inf if identical
   double mean_abs = 0;           // mean |Δ| per channel, 8-bit levels
   int max_abs = 0;               // max |Δ| over channels, 8-bit levels
+
+  // Without a pixel covered in both images the measures have nothing to measure: the fields
+  // above keep their initial values, which are not a result (a printer says "none" instead).
+  bool measured() const { return covered_both > 0; }
 };
 
 // Precondition: same size; masks have one entry per pixel (nonzero = covered).

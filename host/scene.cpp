@@ -181,8 +181,8 @@ Material read_material(const Reader& r, const json& j, const std::string& p) {
   if (j.contains("a") != j.contains("b")) r.fail(p, "give both \"a\" and \"b\" or neither");
   if (j.contains("a")) {
     // Kuijk-Blake f(θ): 0 < a < b <= π/2 (f is 1 − θ²/(ab) near 0 and 0 beyond b).
-    m.a = r.number(j["a"], p + "/a", 1e-6, 1.5707963267948966);
-    m.b = r.number(j["b"], p + "/b", 1e-6, 1.5707963267948966);
+    m.a = r.number(j["a"], p + "/a", kMinAngleAB, 1.5707963267948966);
+    m.b = r.number(j["b"], p + "/b", kMinAngleAB, 1.5707963267948966);
     if (!(*m.a < *m.b)) r.fail(p + "/b", "need a < b");
   }
   return m;

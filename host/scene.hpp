@@ -47,6 +47,10 @@ inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{1} << 20;  // 1 Mi
 // they are parsed, because the JSON library recurses per level.
 inline constexpr int kMaxSceneNesting = 64;
 inline constexpr std::size_t kMaxSceneMeshes = 64;
+// Kuijk-Blake's (a, b) in radians, given in place of n: kMinAngleAB <= a < b <= π/2. The scene
+// files and the server's set_exponent share the bound (the server's was 1e-4 until 2026-12-08,
+// refusing from the page what a scene file may hold).
+inline constexpr double kMinAngleAB = 1e-6;
 // All meshes of a scene together: the same bounds as one mesh (host/meshes.hpp).
 inline constexpr std::size_t kMaxSceneVertices = kMaxMeshVertices;
 inline constexpr std::size_t kMaxSceneTriangles = kMaxMeshTriangles;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/cli_options.hpp"
+#include "host/file_identity.hpp"
 #include "host/image_io.hpp"
 #include "host/replace_file.hpp"
 
@@ -70,6 +71,19 @@ int run_stress_command(const StressCli& cli) {
   if (cli.list) {
     list_cases(chosen);
     return 0;
+  }
+  // Checked before the run (found by review, 2026-12-08): one file for both outputs kept the
+  // bounds rows alone, and rows pinned at another seed are not the bounds the table defines.
+  if (!cli.json.empty() && !cli.bounds_out.empty() && same_output(cli.json, cli.bounds_out)) {
+    std::cerr << "tinyphong stress: --json " << cli.json << " and --pin-bounds " << cli.bounds_out
+              << " are one file: nothing run\n";
+    return 2;
+  }
+  if (!cli.bounds_out.empty() && cli.options.seed != stress::kDefaultSeed) {
+    std::cerr << "tinyphong stress: --pin-bounds pins the default seed's bounds ("
+              << stress::kDefaultSeed << ", docs/STABILITY.md, \"Seeds\"), not seed "
+              << cli.options.seed << "'s: nothing run\n";
+    return 2;
   }
   std::vector<stress::Result> results;
   try {

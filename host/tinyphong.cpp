@@ -12,13 +12,11 @@
 //   tinyphong stress [--quick] [--methods m1,m2] [--cases NAME] [--seed S] [--json FILE]
 //                    [--images DIR]
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <iterator>
@@ -40,6 +38,7 @@
 #include "host/reference.hpp"
 #include "host/scene.hpp"
 #include "host/size_text.hpp"
+#include "host/standard_output.hpp"
 #include "host/stress_command.hpp"
 
 namespace {
@@ -63,7 +62,7 @@ void add_budget_option(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--budget", o.budget,
                   "error budget in output levels for kb-adaptive, 1.." + std::to_string(most) +
                       " (default: the scene's, else 1)")
-      ->check(CLI::Range(1, most));
+      ->check(whole_number(1, most));
 }
 
 // --no-depth-buffer, for the commands that run the device (render, record).
@@ -170,8 +169,12 @@ void print_counters(const CounterSnapshot& counters) {
 void print_comparison(const Comparison& c) {
   std::cout << "pixels compared:      " << c.covered_both << "\n"
             << "only in first:        " << c.only_reference << "\n"
-            << "only in second:       " << c.only_evaluated << "\n"
-            << "colour correctness:   " << c.color_correctness << "  (Vlasic eq. 6.1)\n"
+            << "only in second:       " << c.only_evaluated << "\n";
+  if (!c.measured()) {  // printed a perfect score: correctness 1, PSNR inf, errors 0
+    std::cout << "no pixel is covered in both images: no error to measure\n";
+    return;
+  }
+  std::cout << "colour correctness:   " << c.color_correctness << "  (Vlasic eq. 6.1)\n"
             << "PSNR:                 " << c.psnr_db << " dB\n"
             << "mean |error|:         " << c.mean_abs << " levels\n"
             << "max |error|:          " << c.max_abs << " levels\n";
@@ -254,8 +257,40 @@ void print_worst(const Image8& a, const Mask& ma, const Image8& b, const Mask& m
   }
 }
 
-int run_compare(const std::string& a, const std::string& b, const std::string& diff,
-                std::optional<int> row, int worst) {
+// compare's options beyond its two images.
+struct CompareCli {
+  std::string diff;
+  std::optional<int> row;
+  int worst = 0;
+  std::string background = "0,0,0";  // checked by kBackground
+};
+
+// R,G,B in 8-bit levels, each a whole decimal number in 0..255: the colour compare takes for
+// "not covered" in the files it reads.
+std::optional<glm::u8vec3> parse_background(const std::string& text) {
+  glm::u8vec3 colour;
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos) return std::nullopt;
+    std::string part = text.substr(start, comma - start);  // "3,4" for a fourth: refused
+    if (!whole_number(0, 255)(part).empty()) return std::nullopt;
+    colour[k] = static_cast<std::uint8_t>(std::stoi(part));
+    start = comma + 1;
+  }
+  return colour;
+}
+
+const CLI::Validator kBackground(
+    [](std::string& text) -> std::string {
+      return parse_background(text) ? ""
+                                    : "R,G,B: three whole numbers in 0..255, got '" + text + "'";
+    },
+    "R,G,B");
+
+int run_compare(const std::string& a, const std::string& b, const CompareCli& o) {
+  const std::string& diff = o.diff;
+  const std::optional<int> row = o.row;
   if (writes_over_input("compare", {diff},
                         {{a, "the first image " + a}, {b, "the second image " + b}}))
     return 2;
@@ -269,9 +304,17 @@ int run_compare(const std::string& a, const std::string& b, const std::string& d
     std::cerr << "tinyphong compare: --row " << *row << " outside 0.." << ia.height - 1 << "\n";
     return 2;
   }
-  const Mask ma = mask_from_background(ia), mb = mask_from_background(ib);
+  // The files carry no coverage: a pixel of exactly the background colour is taken as not
+  // covered (render --compare uses the device's and the reference's own coverage).
+  const glm::u8vec3 background = *parse_background(o.background);
+  const Mask ma = mask_from_background(ia, background), mb = mask_from_background(ib, background);
+  const auto whole = [](const Mask& m) { return std::ranges::all_of(m, [](auto c) { return c; }); };
+  if (whole(ma) && whole(mb))  // most likely a scene's background that is not the one given
+    std::cerr << "tinyphong compare: note: no pixel of either image is the background colour "
+              << o.background << ", so every pixel counts as covered (--background R,G,B gives "
+              << "the scene's)\n";
   print_comparison(compare(ia, ma, ib, mb));
-  if (worst > 0) print_worst(ia, ma, ib, mb, worst);
+  if (o.worst > 0) print_worst(ia, ma, ib, mb, o.worst);
   if (!diff.empty()) {
     write_png(diff, difference_image(ia, ma, ib, mb));
     std::cout << "difference image (Vlasic eq. 6.2) -> " << diff << "\n";
@@ -450,19 +493,26 @@ int run_memory(std::uint32_t vertices, std::uint32_t indices) {
   return 0;
 }
 
-// Whether everything written to standard output reached it. A report redirected to a full disk
-// (`replay --hash *.tpcmd > hashes.txt`) was lost without a word and the exit status was 0.
-bool standard_output_written() {
-  errno = 0;
-  const bool flushed = std::fflush(stdout) == 0;
-  if (flushed && std::ferror(stdout) == 0) return true;
-  const int error = errno;
-  std::cerr << "tinyphong: standard output: cannot write"
-            << (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
-  return false;
-}
-
 int run(int argc, char** argv);
+
+// While a command writes one of its files to standard output (`record -o /dev/stdout | replay
+// /dev/stdin`), its report goes to standard error: the lines "recorded ... -> /dev/stdout" were
+// written into the stream (found by review, 2026-12-08).
+class ReportAwayFromFiles {
+ public:
+  explicit ReportAwayFromFiles(const std::vector<std::string>& outputs) {
+    if (std::ranges::any_of(outputs, [](const std::string& o) { return is_standard_output(o); }))
+      saved_ = std::cout.rdbuf(std::cerr.rdbuf());
+  }
+  ~ReportAwayFromFiles() {
+    if (saved_ != nullptr) std::cout.rdbuf(saved_);
+  }
+  ReportAwayFromFiles(const ReportAwayFromFiles&) = delete;
+  ReportAwayFromFiles& operator=(const ReportAwayFromFiles&) = delete;
+
+ private:
+  std::streambuf* saved_ = nullptr;
+};
 
 }  // namespace
 
@@ -470,7 +520,7 @@ int run(int argc, char** argv);
 // result outside its bound (docs/STABILITY.md).
 int main(int argc, char** argv) {
   const int status = run(argc, argv);
-  if (standard_output_written()) return status;
+  if (standard_output_written("tinyphong")) return status;
   const bool stress = argc > 1 && std::string_view(argv[1]) == "stress";
   return status != 0 && status != 1 ? status : stress ? 3 : 1;
 }
@@ -506,18 +556,25 @@ int run(int argc, char** argv) {
   reference->add_flag("--angular", ref_angular,
                       "slerp the normals (Kuijk-Blake's interpolation) instead of Phong's");
 
-  std::string cmp_a, cmp_b, cmp_diff;
-  std::optional<int> cmp_row;
-  int cmp_worst = 0;
+  std::string cmp_a, cmp_b;
+  CompareCli cmp_opts;
   auto* cmp =
       app.add_subcommand("compare", "error metrics of SECOND against FIRST (the reference)");
   cmp->add_option("first", cmp_a, "reference image")->required()->check(CLI::ExistingFile);
   cmp->add_option("second", cmp_b, "evaluated image")->required()->check(CLI::ExistingFile);
-  cmp->add_option("--diff", cmp_diff, "write the gamma-enhanced difference image (eq. 6.2)");
-  cmp->add_option("--row", cmp_row, "print the illumination curve of this row (eq. 6.3) as CSV");
+  cmp->add_option("--diff", cmp_opts.diff, "write the gamma-enhanced difference image (eq. 6.2)");
+  cmp->add_option("--row", cmp_opts.row,
+                  "print the illumination curve of this row (eq. 6.3) as CSV")
+      ->check(whole_number(0, std::numeric_limits<int>::max()));
 
-  cmp->add_option("--worst", cmp_worst, "list the N pixels that differ most")
-      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
+  cmp->add_option("--worst", cmp_opts.worst, "list the N pixels that differ most")
+      ->check(whole_number(0, std::numeric_limits<int>::max()));
+  cmp->add_option("--background", cmp_opts.background,
+                  "the scenes' background colour in 8-bit levels: a pixel of exactly this colour "
+                  "is taken as not covered, in either image (render --compare knows the coverage "
+                  "exactly)")
+      ->check(kBackground)
+      ->capture_default_str();
 
   auto* methods = app.add_subcommand("methods", "list the shading methods");
 
@@ -558,18 +615,20 @@ int run(int argc, char** argv) {
   auto* memory = app.add_subcommand(
       "memory", "the device's memory block per resolution, pixel format and method (bytes)");
   memory->add_option("--vertices", mem_vertices, "vertex buffer capacity")
-      ->check(CLI::Range(0u, tp::fw::kMaxVertexCapacity));
+      ->check(whole_number(0, tp::fw::kMaxVertexCapacity));
   memory->add_option("--indices", mem_indices, "index buffer capacity")
-      ->check(CLI::Range(0u, tp::fw::kMaxIndexCapacity));
+      ->check(whole_number(0, tp::fw::kMaxIndexCapacity));
 
   StressCli stress_cli;
   add_stress_command(app, stress_cli);
 
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
+  const ReportAwayFromFiles report({render_out, ref_out, ref_exr, cmp_opts.diff, rec.out, rep_out,
+                                    stress_cli.json, stress_cli.bounds_out});
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);
-    if (*cmp) return run_compare(cmp_a, cmp_b, cmp_diff, cmp_row, cmp_worst);
+    if (*cmp) return run_compare(cmp_a, cmp_b, cmp_opts);
     if (app.got_subcommand("stress")) return run_stress_command(stress_cli);
     if (*record) return run_record(rec);
     if (*replay) return run_replay(rep_in, rep_out, rep_hash);

@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/scene.hpp"
+
 namespace tp::server {
 namespace {
 
@@ -204,16 +206,17 @@ Result check_combination(const json& j, Command& c) {
 Result read_fields(const json& j, Command& c) {
   constexpr double kPi = std::numbers::pi;
   const double color_max = c.type == ControlType::set_material ? 1.0 : 4.0;
-  // Ranges: n up to kMaxExponentN; angles (a, b) in radians within (0, π/2], the device's (its
-  // set_material refused b above π/2 with a message naming no field); reflectances in
+  // Ranges: n up to kMaxExponentN; angles (a, b) in radians within [kMinAngleAB, π/2], the scene
+  // files' (host/scene.hpp; π/2 is the device's bound too, and its set_material refused b above
+  // it with a message naming no field); reflectances in
   // [0, 1]; material colours in [0, 1], light colours up to 4 (intensity); light vectors within
   // ±1000; a light index names one of the device's light slots.
   const Result checks[] = {
       get_string(j, "method", c.text),
       get_string(j, "name", c.text),
       get_number(j, "n", 1, kMaxExponentN, c.n),
-      get_number(j, "a", 1e-4, kPi / 2, c.a),
-      get_number(j, "b", 1e-4, kPi / 2, c.b),
+      get_number(j, "a", host::kMinAngleAB, kPi / 2, c.a),
+      get_number(j, "b", host::kMinAngleAB, kPi / 2, c.b),
       get_number(j, "ka", 0, 1, c.ka),
       get_number(j, "kd", 0, 1, c.kd),
       get_number(j, "ks", 0, 1, c.ks),

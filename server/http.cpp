@@ -69,19 +69,40 @@ Response route(const Request& req, const HostPolicy& policy) {
   return plain(req, http::status::not_found, "not found\n");
 }
 
-std::optional<Response> refusal_for_size(boost::beast::error_code ec) {
+namespace {
+
+// The parser's errors that mean the request itself is malformed (RFC 9112: answered with 400),
+// as against the connection's end or the size limits.
+bool malformed_request(boost::beast::error_code ec) {
+  for (const http::error e :
+       {http::error::bad_line_ending, http::error::bad_method, http::error::bad_target,
+        http::error::bad_version, http::error::bad_field, http::error::bad_value,
+        http::error::bad_content_length, http::error::bad_transfer_encoding, http::error::bad_chunk,
+        http::error::bad_chunk_extension, http::error::bad_obs_fold})
+    if (ec == e) return true;
+  return false;
+}
+
+}  // namespace
+
+std::optional<Response> refusal_for(boost::beast::error_code ec) {
   http::status st{};
-  if (ec == http::error::body_limit)
+  std::string why;
+  if (ec == http::error::body_limit) {
     st = http::status::payload_too_large;
-  else if (ec == http::error::header_limit)
+  } else if (ec == http::error::header_limit) {
     st = http::status::request_header_fields_too_large;
-  else
+  } else if (malformed_request(ec)) {
+    st = http::status::bad_request;
+    why = ": " + ec.message();  // the parser's words: "bad method", "bad Content-Length", ...
+  } else {
     return std::nullopt;
+  }
   Response res{st, 11};
   res.set(http::field::server, "tinyphong");
   res.set(http::field::content_type, "text/plain; charset=utf-8");
   res.keep_alive(false);
-  res.body() = std::string(obsolete_reason(st)) + "\n";
+  res.body() = std::string(obsolete_reason(st)) + why + "\n";
   res.prepare_payload();
   return res;
 }

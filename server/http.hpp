@@ -27,10 +27,11 @@ struct HostPolicy {
 // 403 for a foreign Host; 405 for methods other than GET/HEAD.
 Response route(const Request& req, const HostPolicy& policy);
 
-// The answer to a request the parser refused for its size: 413 for a body over the limit, 431
-// for headers over it, each closing the connection (the rest of the request is not read). None
-// for any other read error (end of stream, timeout, a malformed request): the connection closes.
-std::optional<Response> refusal_for_size(boost::beast::error_code ec);
+// The answer to a request the parser refused: 413 for a body over the limit, 431 for headers
+// over it, 400 for a malformed request (with the parser's reason), each closing the connection
+// (the rest of the request is not read). None for any other read error (end of stream, a request
+// cut short, timeout): the connection closes.
+std::optional<Response> refusal_for(boost::beast::error_code ec);
 
 // "" if a WebSocket upgrade to /ws may proceed, else the reason (answered with 403/404).
 std::string check_upgrade(const Request& req, const HostPolicy& policy, http::status& status);

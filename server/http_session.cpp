@@ -26,12 +26,12 @@ void HttpSession::do_read() {
 }
 
 void HttpSession::on_read(beast::error_code ec, std::size_t) {
-  if (ec) {  // end of stream, timeout, or a malformed/oversized request: close
+  if (ec) {  // end of stream, timeout, a malformed or oversized request: answer if due, close
     // A kept-alive connection that times out before its next request starts is an orderly end
     // (a browser keeps one open after loading the page), like end_of_stream.
     const bool idle = ec == beast::error::timeout && !parser_->got_some();
     if (!idle) fail(ec, "http read");
-    if (auto refusal = refusal_for_size(ec)) {  // a request too large still gets its answer
+    if (auto refusal = refusal_for(ec)) {  // a malformed or too large request gets its answer
       drain_after_send_ = true;
       send(std::move(*refusal));
       return;

@@ -50,5 +50,30 @@ out=$("$results" --scenes triangle,triangle --methods flat,flat --size 32x16 --r
 [ "$(grep -cE "^\| flat \|" <<<"$out")" = 1 ] ||
   { echo "FAIL: tinyphong-results ran a scene or method named twice twice: '$out'"; fail=1; }
 
+# Found by review, 2026-12-08. Whole numbers are decimal digits (CLI11 took 0x10 and " 3").
+for v in 0x10 " 3" 1e3 1.5 nan; do
+  exits 2 "--frames: a whole number in 1..100000 (decimal digits), got '$v'" "$draw" "$tri" --frames "$v"
+  exits 2 "--reps: a whole number in 1..1000 (decimal digits), got '$v'" "$results" --reps "$v"
+done
+# Every scene is read before any is measured: a bad name last printed the tables before it, and
+# a path was joined to scenes/ and read.
+status=0
+out=$("$results" --scenes triangle,bogus --methods flat --size 16x16 --reps 1 2>/dev/null) || status=$?
+[ "$status" = 1 ] && [ -z "$out" ] ||
+  { echo "FAIL: tinyphong-results with a bad scene last: status $status, '$out'"; fail=1; }
+for name in ../scenes/triangle /etc/passwd .hidden; do
+  exits 1 "--scenes: '$name' is not a scene name" "$results" --scenes "$name" --reps 1
+done
+# A report that cannot be written is an error, exit 1 (it was lost with exit 0).
+for cmd in "$draw $tri --size 4x4" "$results --scenes triangle --methods flat --size 8x8 --reps 1"; do
+  status=0
+  err=$($cmd 2>&1 >/dev/full) || status=$?
+  if [ "$status" != 1 ] || ! grep -qF "standard output: cannot write" <<<"$err"; then
+    echo "FAIL: $cmd > /dev/full: status $status, '$err'"; fail=1
+  else
+    echo "ok: $cmd > /dev/full: status 1"
+  fi
+done
+
 [ $fail -eq 0 ] && echo "bench option checks: all as expected"
 exit $fail

@@ -122,7 +122,33 @@ for cmd in methods "stress --cases ab-min --methods flat" "memory"; do
     echo "ok: $cmd > /dev/full: status $status"
   fi
 done
-exits 2 "--worst: Value -1 not in range 0 to 2147483647" compare "$work/ok.png" "$work/ok.png" --worst -1
+exits 2 "--worst: a whole number in 0..2147483647, got '-1'" compare "$work/ok.png" "$work/ok.png" --worst -1
+# Whole-number options read decimal digits only, as --rotate and --seed do: CLI11 took
+# hexadecimal and a leading space, and called 1e3, 1.5 and nan out of range (found by review,
+# 2026-12-08).
+for v in 0x3 " 3" 1e3 1.5 nan +-3 ""; do
+  exits 2 "--budget: a whole number in 1..16 (decimal digits), got '$v'" \
+    render "$tri" -m kb-adaptive --budget "$v" -o "$work/out.png"
+  exits 2 "--worst: a whole number in 0..2147483647 (decimal digits), got '$v'" \
+    compare "$work/ok.png" "$work/ok.png" --worst "$v"
+  exits 2 "--row: a whole number in 0..2147483647 (decimal digits), got '$v'" \
+    compare "$work/ok.png" "$work/ok.png" --row "$v"
+  exits 2 "--vertices: a whole number in 0..16777216 (decimal digits), got '$v'" memory --vertices "$v"
+done
+exits 2 "--budget: a whole number in 1..16, got '17'" record "$tri" --budget 17 -o "$work/o.tpcmd"
+exits 2 "--indices: a whole number in 0..67108864, got '99999999999999999999'" \
+  memory --indices 99999999999999999999
+"$tp" render "$tri" -m kb-adaptive --size 32x16 --budget +3 -o "$work/b3p.png" >/dev/null &&
+  "$tp" render "$tri" -m kb-adaptive --size 32x16 --budget 3 -o "$work/b3.png" >/dev/null &&
+  cmp -s "$work/b3p.png" "$work/b3.png" || { echo "FAIL: --budget +3 is not --budget 3"; fail=1; }
+# One file for --json and --pin-bounds kept the bounds rows alone; rows pinned at another seed
+# are not the bounds the table defines (found by review, 2026-12-08): refused, nothing run.
+exits 2 "are one file: nothing run" \
+  stress --cases ab-min --methods flat --json "$work/same.out" --pin-bounds "$work/./same.out"
+exits 2 "--pin-bounds pins the default seed's bounds (20261202" \
+  stress --cases ab-min --methods flat --seed 1 --pin-bounds "$work/pin.out"
+[ ! -e "$work/same.out" ] && [ ! -e "$work/pin.out" ] ||
+  { echo "FAIL: a refused stress run wrote a file"; fail=1; }
 # A method named twice runs once (it ran twice, every row doubled; found by review, 2026-12-07).
 twice=$("$tp" stress --cases ab-min --methods flat,flat 2>&1 || true)
 grep -q "^1 result, " <<<"$twice" || { echo "FAIL: stress --methods flat,flat: '$twice'"; fail=1; }
@@ -160,6 +186,34 @@ out=$("$tp" record "$tri" -m gouraud --budget 2 -o "$work/b.tpcmd" 2>&1 >/dev/nu
   { echo "FAIL: record -m gouraud --budget 2: '$out'"; fail=1; }
 out=$("$tp" render "$tri" -m kb-adaptive --budget 4 -o "$work/b4.png" 2>&1 >/dev/null) &&
   ! grep -q "note:" <<<"$out" || { echo "FAIL: render -m kb-adaptive --budget 4: '$out'"; fail=1; }
+
+# compare (found by review, 2026-12-08). With no pixel covered in both images it printed a
+# perfect score (correctness 1, PSNR inf); now it says there is nothing to measure.
+out=$("$tp" render "$tri" --rotate 180 --size 16x16 --compare -o "$work/none.png")
+grep -qF "no pixel is covered in both images: no error to measure" <<<"$out" &&
+  ! grep -q "colour correctness\|PSNR" <<<"$out" || { echo "FAIL: nothing covered: '$out'"; fail=1; }
+# A scene's background other than black: compare took every pixel for covered. --background gives
+# it, and compare then prints render --compare's figures; without it, compare says why every pixel
+# counts.
+sed 's/"background": \[[^]]*\]/"background": [0.2, 0.2, 0.2]/' "$tri" > "$work/grey.json"
+grep -q '"background": \[0.2, 0.2, 0.2\]' "$work/grey.json" || { echo "FAIL: no grey scene"; fail=1; }
+figures() { grep -E "^(pixels compared|only in|colour correctness|PSNR|mean|max)" <<<"$1"; }
+rendered=$("$tp" render "$work/grey.json" --size 64x64 -m gouraud --compare -o "$work/grey.png")
+"$tp" reference "$work/grey.json" --size 64x64 -o "$work/grey-ref.png" >/dev/null
+given=$("$tp" compare "$work/grey-ref.png" "$work/grey.png" --background 51,51,51 2>"$work/err")
+[ -n "$(figures "$rendered")" ] && [ "$(figures "$rendered")" = "$(figures "$given")" ] &&
+  [ ! -s "$work/err" ] || { echo "FAIL: compare --background: '$given' vs '$rendered'"; fail=1; }
+"$tp" compare "$work/grey-ref.png" "$work/grey.png" >/dev/null 2>"$work/err"
+grep -qF "note: no pixel of either image is the background colour 0,0,0" "$work/err" ||
+  { echo "FAIL: compare of a grey scene without --background: '$(cat "$work/err")'"; fail=1; }
+for bg in 51,51 1,2,3,4 256,0,0 0x1,0,0 ,,; do
+  exits 2 "--background: R,G,B: three whole numbers in 0..255, got '$bg'" \
+    compare "$work/grey-ref.png" "$work/grey.png" --background "$bg"
+done
+# A float image was read as 8-bit, NaN as 0 (the background): refused, naming the file.
+"$tp" reference "$tri" --size 8x8 -o "$work/r8.png" --exr "$work/r8.exr" >/dev/null
+exits 1 "cannot read $work/r8.exr: its pixels are float, not uint8" \
+  compare "$work/r8.exr" "$work/r8.png"
 
 [ $fail -eq 0 ] && echo "CLI option checks: all as expected"
 exit $fail

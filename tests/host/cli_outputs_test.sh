@@ -213,10 +213,17 @@ rm -rf sub/* images
 # Good outputs: a new stream, a new difference image, both real files.
 "$tp" record scene.json --size 64x48 -o new.tpcmd >/dev/null && [ -s new.tpcmd ] ||
   { echo "FAIL: record to a new file"; fail=1; }
-# /dev/stdout names a descriptor (here a pipe), written as it is: the stream, then record's line.
-"$tp" record scene.json --size 64x48 -o /dev/stdout | cat > piped.out || true  # (checked below)
-cmp -s -n "$(stat -c %s new.tpcmd)" piped.out new.tpcmd && grep -aq "words -> /dev/stdout" piped.out ||
-  { echo "FAIL: record -o /dev/stdout"; fail=1; }
+# /dev/stdout names a descriptor (here a pipe), written as it is: the stream alone, record's line
+# on standard error (it was written into the stream, which replay then refused; found by review,
+# 2026-12-08). A stream recorded into a pipe replays from the pipe.
+"$tp" record scene.json --size 64x48 -o /dev/stdout 2>piped.err | cat > piped.out || true
+cmp -s piped.out new.tpcmd && grep -q "words -> /dev/stdout" piped.err ||
+  { echo "FAIL: record -o /dev/stdout: $(cat piped.err)"; fail=1; }
+hash_file=$("$tp" replay new.tpcmd --hash | cut -d' ' -f1)
+hash_pipe=$("$tp" record scene.json --size 64x48 -o /dev/stdout 2>/dev/null |
+  "$tp" replay /dev/stdin --hash | cut -d' ' -f1) || true
+[ -n "$hash_file" ] && [ "$hash_pipe" = "$hash_file" ] ||
+  { echo "FAIL: record -o /dev/stdout | replay /dev/stdin: '$hash_pipe' vs '$hash_file'"; fail=1; }
 "$tp" record mesh.json scene.json --size 64x48 --dir dir >/dev/null &&
   [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
 "$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||

@@ -412,6 +412,32 @@ TEST(ServerRobustness, RequestsTooLargeGetTheirStatus) {
   EXPECT_EQ(http_get(srv.port(), "/"), 200);
 }
 
+// Malformed requests were closed without a word (as Beast's examples do); a client could not
+// tell a refused request from a lost connection. Each now gets 400 with the parser's reason,
+// and the server goes on serving.
+TEST(ServerRobustness, MalformedRequestsGet400) {
+  ServerProcess srv(pattern_args());
+  const std::string host = "Host: " + srv.host() + "\r\n";
+  const struct {
+    std::string request, reason;
+  } cases[] = {
+      {"GE\x01T / HTTP/1.1\r\n" + host + "\r\n", "bad method"},
+      {"GET / HTTP/9.Z\r\n" + host + "\r\n", "bad version"},
+      {"GET / HTTP/1.1\r\n" + host + "Content-Length: -5\r\n\r\n", "bad Content-Length"},
+      {"GET / HTTP/1.1\r\n" + host + "Bad Field: x\r\n\r\n", "bad field"},
+      {"POST / HTTP/1.1\r\n" + host + "Transfer-Encoding: chunked\r\n\r\nzz\r\n", "bad chunk"},
+  };
+  for (const auto& c : cases) {
+    const std::string got = raw_exchange(srv.port(), c.request);
+    EXPECT_EQ(got.rfind("HTTP/1.1 400 Bad Request\r\n", 0), 0u) << c.reason << ": " << got;
+    EXPECT_NE(got.find("Connection: close\r\n"), std::string::npos) << got;
+    EXPECT_NE(got.find("\r\n\r\nBad Request: " + c.reason + "\n"), std::string::npos) << got;
+  }
+  // A request cut short by the client's end of stream has nobody to answer: closed quietly.
+  EXPECT_EQ(raw_exchange(srv.port(), "GET / HTTP/1.1\r\nHost: 127"), "");
+  EXPECT_EQ(http_get(srv.port(), "/"), 200);
+}
+
 // Out of descriptors, accepting failed at once and was retried at once: the listener spun on
 // a core and logged every attempt (11 MB of "Too many open files" in 3 s). Now it waits between
 // attempts, says so once, and serves again when connections close.

@@ -113,7 +113,10 @@ TEST(Control, RejectsEachMalformedMessageByName) {
       {"{\"type\":\"set_exponent\",\"a\":0.5,\"b\":0.3}", "'a' must be less than 'b'"},
       // π/2 is the device's bound (the server took up to π, which the device then refused).
       {"{\"type\":\"set_exponent\",\"a\":0.5,\"b\":3}",
-       "'b' out of range [0.0001, 1.5707963267948966]"},
+       "'b' out of range [1e-06, 1.5707963267948966]"},
+      // The scene files' bound below (the server's was 1e-4: a scene's (a, b) could not be set).
+      {"{\"type\":\"set_exponent\",\"a\":5e-7,\"b\":0.3}",
+       "'a' out of range [1e-06, 1.5707963267948966]"},
       {"{\"type\":\"set_material\",\"kd\":1.5}", "'kd' out of range"},
       {"{\"type\":\"set_material\",\"color\":[1,1]}", "array of 3 numbers"},
       {"{\"type\":\"set_material\"}", "needs"},
@@ -219,6 +222,8 @@ TEST(Control, AppliesValidMessagesAndRollsBackFailures) {
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"n\":10000}"), "");  // the device's bound
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":0.3}"), "");
   EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":0.1,\"b\":1.5707963267948966}"), "");
+  // The stress case ab-min's (a, b), which a scene file may hold.
+  EXPECT_EQ(run("{\"type\":\"set_exponent\",\"a\":1e-6,\"b\":2e-6}"), "");
   EXPECT_TRUE(src.settings().use_ab);
   EXPECT_EQ(run("{\"type\":\"specular_only\",\"on\":true}"), "");
   EXPECT_TRUE(src.settings().specular_only);
@@ -271,16 +276,23 @@ TEST(Http, HeadAnswersHaveHeadersOnly) {
   EXPECT_TRUE(foreign.body().empty());
 }
 
-TEST(Http, RequestsTooLargeAreAnsweredAndClosed) {
-  const auto body = refusal_for_size(http::error::body_limit);
+TEST(Http, RequestsTooLargeOrMalformedAreAnsweredAndClosed) {
+  const auto body = refusal_for(http::error::body_limit);
   ASSERT_TRUE(body.has_value());
   EXPECT_EQ(body->result(), http::status::payload_too_large);
   EXPECT_FALSE(body->keep_alive());
-  const auto header = refusal_for_size(http::error::header_limit);
+  const auto header = refusal_for(http::error::header_limit);
   ASSERT_TRUE(header.has_value());
   EXPECT_EQ(header->result(), http::status::request_header_fields_too_large);
-  EXPECT_FALSE(refusal_for_size(http::error::end_of_stream).has_value());
-  EXPECT_FALSE(refusal_for_size(boost::beast::error::timeout).has_value());
+  const auto malformed = refusal_for(http::error::bad_method);
+  ASSERT_TRUE(malformed.has_value());
+  EXPECT_EQ(malformed->result(), http::status::bad_request);
+  EXPECT_EQ(malformed->body(), "Bad Request: bad method\n");
+  EXPECT_FALSE(malformed->keep_alive());
+  // Nothing to answer: the client left, or sent part of a request and stopped.
+  EXPECT_FALSE(refusal_for(http::error::end_of_stream).has_value());
+  EXPECT_FALSE(refusal_for(http::error::partial_message).has_value());
+  EXPECT_FALSE(refusal_for(boost::beast::error::timeout).has_value());
 }
 
 TEST(Http, RefusesForeignHostsAndOrigins) {
