@@ -36,9 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--budget", budget,
                  "kb-adaptive's error budget in output levels (default: the scene's)")
-      ->check(whole_number(1, tp::fw::kMaxBudgetLevels));
+      ->transform(whole_number(1, tp::fw::kMaxBudgetLevels));
   app.add_option("--frames", frames, "render this many frames and print the median frame time")
-      ->check(whole_number(1, 100000));
+      ->transform(whole_number(1, 100000));
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
   try {
     Scene scene = load_scene(scene_file);

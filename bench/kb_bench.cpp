@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
   int reps = 5;
   bool quick = false;
   app.add_option("--reps", reps, "timing rounds (median taken)")
-      ->check(tp::host::whole_number(1, 100));
+      ->transform(tp::host::whole_number(1, 100));
   app.add_flag("--quick", quick, "one light count and no sweep (smoke run)");
   if (const std::optional<int> status = tp::host::parse_options(app, argc, argv)) return *status;
   const std::vector<std::string> scenes = {"sphere-32",       "sphere-40", "sphere-512",

@@ -16,7 +16,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,13 +47,14 @@ struct Row {
   std::uint64_t pixels = 0;
 };
 
+// A name, not a path: "../x" and "/etc/passwd" were joined to scenes/ and read.
+bool is_scene_name(const std::string& name) {
+  return name.find_first_of("/\\") == std::string::npos && !name.starts_with('.');
+}
+
 // A scene of scenes/ by name, at the resolution given: throws naming it if it does not load, or
 // does not fit the device (its checks, as a render's).
 Scene load_named_scene(const std::string& name, const std::optional<Size>& resolution) {
-  // A name, not a path: "../x" and "/etc/passwd" were joined to the folder and read.
-  if (name.find_first_of("/\\") != std::string::npos || name.starts_with('.'))
-    throw std::runtime_error("--scenes: '" + name +
-                             "' is not a scene name (a file of scenes/ without .json)");
   Scene scene = load_scene(std::string(TP_SCENES_DIR) + "/" + name + ".json");
   if (resolution) {
     scene.width = resolution->width;
@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
   app.add_option("--methods", methods_arg, "comma-separated methods (default: all)")
       ->check(method_list_check());
   app.add_option("--reps", reps, "timing rounds per method (median taken)")
-      ->check(whole_number(1, 1000));
+      ->transform(whole_number(1, 1000));
   app.add_option("--size", size, "override the resolution, WIDTHxHEIGHT")->check(size_check());
   app.add_option("--peer", peer, "also time a peer renderer in the same rounds")
       ->check(CLI::IsMember({std::string(kPeerName)}));
@@ -160,6 +160,12 @@ int main(int argc, char** argv) {
     std::cerr << "--scenes: no scene named in '" << scenes_arg << "'\n";
     return 2;
   }
+  for (const std::string& name : scenes)
+    if (!is_scene_name(name)) {
+      std::cerr << "--scenes: '" << name << "' is not a scene name (a file of scenes/ without "
+                << ".json)\n";
+      return 2;
+    }
   std::vector<std::string> methods = list_items(methods_arg);
   if (methods.empty())
     for (const auto& m : method_names()) methods.emplace_back(m.name);

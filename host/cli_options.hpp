@@ -5,15 +5,14 @@
 #pragma once
 
 #include <algorithm>
-#include <charconv>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "host/cli_numbers.hpp"
 #include "host/device_renderer.hpp"
 #include "host/size_text.hpp"
 
@@ -31,29 +30,6 @@ inline CLI::Validator method_check() {
         }
       },
       "METHOD");
-}
-
-// A whole number written in decimal ("12", "+3", "-1") within [low, high]. CLI11's own reading
-// of an integer option also took hexadecimal ("0x10") and a leading space (" 3"), and called
-// "1e3", "1.5" and "nan" out of range (found by review, 2026-12-08; --rotate's and --seed's
-// checks had been mended the day before).
-inline CLI::Validator whole_number(long long low, long long high) {
-  const std::string range = std::to_string(low) + ".." + std::to_string(high);
-  return CLI::Validator(
-      [low, high, range](std::string& text) -> std::string {
-        std::string_view digits = text;
-        const bool plus = digits.starts_with('+');
-        if (plus) digits.remove_prefix(1);
-        long long v = 0;
-        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-        const bool read = ec == std::errc() || ec == std::errc::result_out_of_range;
-        if (!read || end != digits.data() + digits.size() || (plus && digits.starts_with('-')))
-          return "a whole number in " + range + " (decimal digits), got '" + text + "'";
-        if (ec == std::errc::result_out_of_range || v < low || v > high)
-          return "a whole number in " + range + ", got '" + text + "'";
-        return "";
-      },
-      "INT in " + range);
 }
 
 // WIDTHxHEIGHT within the device's viewport (parse_size).

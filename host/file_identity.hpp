@@ -36,14 +36,15 @@ inline bool same_output(const std::filesystem::path& a, const std::filesystem::p
   return !e && fa == fb;
 }
 
-// Whether writing `path` writes to this process's standard output (`-o /dev/stdout`, or the file
-// that standard output was redirected to).
-// (By device and inode: std::filesystem::equivalent refuses pipes, "operation not supported".)
+// Whether writing `path` writes into what this process's standard output is, a pipe or a file
+// (`-o /dev/stdout | ...`, or `-o f > f`); a character device (a terminal, /dev/null) is not
+// counted, since nothing written there is a file to keep apart. By device and inode:
+// std::filesystem::equivalent refuses pipes ("operation not supported").
 inline bool is_standard_output(const std::filesystem::path& path) {
   struct stat out {};
   struct stat file {};
-  return !path.empty() && ::fstat(STDOUT_FILENO, &out) == 0 && ::stat(path.c_str(), &file) == 0 &&
-         out.st_dev == file.st_dev && out.st_ino == file.st_ino;
+  return !path.empty() && ::fstat(STDOUT_FILENO, &out) == 0 && !S_ISCHR(out.st_mode) &&
+         ::stat(path.c_str(), &file) == 0 && out.st_dev == file.st_dev && out.st_ino == file.st_ino;
 }
 
 // A file a command reads, and how a refusal names it.

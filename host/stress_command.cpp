@@ -20,13 +20,15 @@ namespace tp::host {
 namespace {
 
 // A seed: a whole decimal number that fits 64 bits, written as it is read (CLI11 alone took -1 as
-// 2^64 − 1, clamped 2^64 and beyond to it, read "" as 0 and "0x10" as 16).
+// 2^64 − 1, clamped 2^64 and beyond to it, read "" as 0 and "0x10" as 16), and written back as
+// the number read, since CLI11's own conversion takes a leading 0 for octal (->transform keeps it).
 const CLI::Validator kSeed(
     [](std::string& text) -> std::string {
       std::uint64_t v = 0;
       const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
       if (text.empty() || ec != std::errc() || end != text.data() + text.size())
         return "a whole number in 0.." + std::to_string(UINT64_MAX) + ", got '" + text + "'";
+      text = std::to_string(v);
       return "";
     },
     "SEED");
@@ -127,7 +129,7 @@ void add_stress_command(CLI::App& app, StressCli& cli) {
   cmd->add_option("--cases", cli.options.case_filter, "only cases whose name contains this");
   cmd->add_option("--seed", cli.options.seed,
                   "seed of the cases' random parts (the bounds are the default seed's)")
-      ->check(kSeed);
+      ->transform(kSeed);
   cmd->add_option("--json", cli.json, "also write every result as JSON to this file");
   cmd->add_flag("--list", cli.list, "list the cases --quick and --cases select, and exit");
   cmd->add_option("--images", cli.options.image_dir,

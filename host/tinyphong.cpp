@@ -62,7 +62,7 @@ void add_budget_option(CLI::App* cmd, SceneOptions& o) {
   cmd->add_option("--budget", o.budget,
                   "error budget in output levels for kb-adaptive, 1.." + std::to_string(most) +
                       " (default: the scene's, else 1)")
-      ->check(whole_number(1, most));
+      ->transform(whole_number(1, most));
 }
 
 // --no-depth-buffer, for the commands that run the device (render, record).
@@ -565,10 +565,10 @@ int run(int argc, char** argv) {
   cmp->add_option("--diff", cmp_opts.diff, "write the gamma-enhanced difference image (eq. 6.2)");
   cmp->add_option("--row", cmp_opts.row,
                   "print the illumination curve of this row (eq. 6.3) as CSV")
-      ->check(whole_number(0, std::numeric_limits<int>::max()));
+      ->transform(whole_number(0, std::numeric_limits<int>::max()));
 
   cmp->add_option("--worst", cmp_opts.worst, "list the N pixels that differ most")
-      ->check(whole_number(0, std::numeric_limits<int>::max()));
+      ->transform(whole_number(0, std::numeric_limits<int>::max()));
   cmp->add_option("--background", cmp_opts.background,
                   "the scenes' background colour in 8-bit levels: a pixel of exactly this colour "
                   "is taken as not covered, in either image (render --compare knows the coverage "
@@ -615,9 +615,9 @@ int run(int argc, char** argv) {
   auto* memory = app.add_subcommand(
       "memory", "the device's memory block per resolution, pixel format and method (bytes)");
   memory->add_option("--vertices", mem_vertices, "vertex buffer capacity")
-      ->check(whole_number(0, tp::fw::kMaxVertexCapacity));
+      ->transform(whole_number(0, tp::fw::kMaxVertexCapacity));
   memory->add_option("--indices", mem_indices, "index buffer capacity")
-      ->check(whole_number(0, tp::fw::kMaxIndexCapacity));
+      ->transform(whole_number(0, tp::fw::kMaxIndexCapacity));
 
   StressCli stress_cli;
   add_stress_command(app, stress_cli);

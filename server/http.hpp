@@ -29,8 +29,8 @@ Response route(const Request& req, const HostPolicy& policy);
 
 // The answer to a request the parser refused: 413 for a body over the limit, 431 for headers
 // over it, 400 for a malformed request (with the parser's reason), each closing the connection
-// (the rest of the request is not read). None for any other read error (end of stream, a request
-// cut short, timeout): the connection closes.
+// (the rest of the request is read and dropped, HttpSession::drain). None for any other read
+// error (end of stream, a request cut short, timeout): the connection closes.
 std::optional<Response> refusal_for(boost::beast::error_code ec);
 
 // "" if a WebSocket upgrade to /ws may proceed, else the reason (answered with 403/404).

@@ -85,7 +85,7 @@ void HttpSession::on_write(bool close, beast::error_code ec, std::size_t) {
 }
 
 // Closing a socket with unread bytes sends a reset, which can destroy the answer before the
-// client reads it; so after refusing a request too large, read what the client still sends
+// client reads it; so after refusing a request (too large or malformed), read what the client sends
 // until it closes, for at most kDrainBytes and kDrainTime in all.
 void HttpSession::drain(std::size_t budget) {
   if (budget == 0) return;

@@ -10,6 +10,7 @@
 #include <malloc.h>
 #endif
 
+#include "host/cli_numbers.hpp"
 #include "server/pattern_source.hpp"
 #ifdef TP_HAVE_DEVICE
 #include "server/device_source.hpp"
@@ -68,7 +69,8 @@ int main(int argc, char** argv) {
       "--allow-host", opt.allow_hosts,
       "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")
-      ->check(CLI::Range(0, 65535))  // (beyond, CLI11 said "At Most 1 required but received 2")
+      ->transform(tp::host::whole_number(
+          0, 65535))  // (beyond, CLI11 said "At Most 1 required but received 2")
       ->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
   app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")
@@ -79,9 +81,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"device", "pattern"}))
       ->capture_default_str();
   app.add_option("--width", width, "initial width (default: the scene's)")
-      ->check(CLI::Range(16, 2048));
+      ->transform(tp::host::whole_number(16, 2048));
   app.add_option("--height", height, "initial height (default: the scene's)")
-      ->check(CLI::Range(16, 2048));
+      ->transform(tp::host::whole_number(16, 2048));
   app.add_option("--max-fps", max_fps, "render-loop pacing cap")
       ->check(finite_within(1.0, 1000.0))
       ->capture_default_str();
@@ -90,7 +92,7 @@ int main(int argc, char** argv) {
       ->check(finite_within(0.2, 600.0))
       ->capture_default_str();
   app.add_option("--io-threads", opt.io_threads, "I/O threads")
-      ->check(CLI::Range(1, 16))
+      ->transform(tp::host::whole_number(1, 16))
       ->capture_default_str();
   try {
     app.parse(argc, argv);

@@ -347,7 +347,9 @@ function setValue(id, v, force = false) {
 
 // What a control shows of a state message.
 function controlValue(s, id) {
-  if (id === 'a' || id === 'b') return Number(s[id]).toFixed(4); // without use_ab: those n gives
+  // (a, b) to four significant digits: without use_ab the pair n gives, and a scene's (1e-6, 2e-6)
+  // showed as 0.0000, which "set exponent" then sent back and the server refused.
+  if (id === 'a' || id === 'b') return String(Number(Number(s[id]).toPrecision(4)));
   if (id === 'color') return toHex(s.color);
   return s[id];
 }

@@ -246,9 +246,31 @@ try {
   // choosing (a, b) starts from what renders (they were blank, or 0, which is refused).
   const ab = await page.evaluate(() => [window.tp.state.use_ab, window.tp.state.a, window.tp.state.b,
     document.getElementById('a').value, document.getElementById('b').value]);
-  check(ab[0] === false && ab[1] > 0 && ab[1] < ab[2] && Number(ab[3]) === Number(ab[1].toFixed(4)) &&
-        Number(ab[4]) === Number(ab[2].toFixed(4)),
+  check(ab[0] === false && ab[1] > 0 && ab[1] < ab[2] && Number(ab[3]) === Number(ab[1].toPrecision(4)) &&
+        Number(ab[4]) === Number(ab[2].toPrecision(4)),
         `without use_ab the a and b fields show the device's (a, b) for n (${ab[3]}, ${ab[4]})`);
+  // The smallest (a, b) a scene file may hold, (1e-6, 2e-6), set from the page, is shown as it is
+  // and can be applied again from the fields (they showed 0.0000, and "set exponent" sent a = 0,
+  // which the server refused; found by review, 2026-12-08). Then back to n.
+  await page.check('#use-ab');
+  await page.fill('#a', '0.000001');
+  await page.fill('#b', '0.000002');
+  await page.click('#apply-exp');
+  await page.waitForFunction(() => window.tp.state.use_ab && window.tp.state.a === 1e-6 &&
+                             window.tp.state.b === 2e-6, null, { timeout: 10000 });
+  await page.click('#n'); // the focus off the fields, so that the state's values fill them
+  await page.evaluate(() => { window.tp.replies.length = 0; });
+  await page.click('#apply-exp');
+  await page.waitForFunction(() => window.tp.replies.some((r) => r.request === 'set_exponent'), null,
+                             { timeout: 10000 });
+  const again = await page.evaluate(() => [document.getElementById('a').value,
+    document.getElementById('b').value, window.tp.replies.filter((r) => r.type === 'error' &&
+      r.request === 'set_exponent').length, window.tp.state.a]);
+  check(Number(again[0]) === 1e-6 && Number(again[1]) === 2e-6 && again[2] === 0 && again[3] === 1e-6,
+        `(a, b) = (1e-6, 2e-6) shows as (${again[0]}, ${again[1]}) and applies again unrefused`);
+  await page.check('#use-n');
+  await page.click('#apply-exp');
+  await page.waitForFunction(() => !window.tp.state.use_ab, null, { timeout: 10000 });
 
   // A light's row keeps a colour above 1 and its exact value: "set" to move the light sends it back
   // unchanged (a colour picker alone holds 8 bits in [0, 1]).

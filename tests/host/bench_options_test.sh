@@ -62,7 +62,7 @@ out=$("$results" --scenes triangle,bogus --methods flat --size 16x16 --reps 1 2>
 [ "$status" = 1 ] && [ -z "$out" ] ||
   { echo "FAIL: tinyphong-results with a bad scene last: status $status, '$out'"; fail=1; }
 for name in ../scenes/triangle /etc/passwd .hidden; do
-  exits 1 "--scenes: '$name' is not a scene name" "$results" --scenes "$name" --reps 1
+  exits 2 "--scenes: '$name' is not a scene name" "$results" --scenes "$name" --reps 1
 done
 # A report that cannot be written is an error, exit 1 (it was lost with exit 0).
 for cmd in "$draw $tri --size 4x4" "$results --scenes triangle --methods flat --size 8x8 --reps 1"; do

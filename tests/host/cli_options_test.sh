@@ -138,6 +138,10 @@ done
 exits 2 "--budget: a whole number in 1..16, got '17'" record "$tri" --budget 17 -o "$work/o.tpcmd"
 exits 2 "--indices: a whole number in 0..67108864, got '99999999999999999999'" \
   memory --indices 99999999999999999999
+# Read as written: CLI11's own conversion took a leading 0 for octal ("010" was 8, "08" refused).
+"$tp" memory --vertices 010 | grep -q "^Device memory block in bytes (Device::memory_required), 10 vertices" &&
+  "$tp" memory --vertices 08 | grep -q ", 8 vertices" ||
+  { echo "FAIL: memory --vertices 010 / 08 not read as decimal"; fail=1; }
 "$tp" render "$tri" -m kb-adaptive --size 32x16 --budget +3 -o "$work/b3p.png" >/dev/null &&
   "$tp" render "$tri" -m kb-adaptive --size 32x16 --budget 3 -o "$work/b3.png" >/dev/null &&
   cmp -s "$work/b3p.png" "$work/b3.png" || { echo "FAIL: --budget +3 is not --budget 3"; fail=1; }

@@ -555,8 +555,12 @@ TEST(ServerRobustness, BadOptionsAreRefusedNamingTheOption) {
       {"--max-fps inf", "--max-fps: a number in [1 - 1000], got 'inf'"},
       {"--deadline nan", "--deadline: a number in [0.2 - 600], got 'nan'"},
       {"--deadline 0.1", "--deadline: a number in [0.2 - 600], got '0.1'"},
-      {"--port 99999", "--port: Value 99999 not in range 0 to 65535"},
-      {"--width 15", "--width: Value 15 not in range 16 to 2048"},
+      {"--port 99999", "--port: a whole number in 0..65535, got '99999'"},
+      {"--width 15", "--width: a whole number in 16..2048, got '15'"},
+      // Decimal digits only (found by review, 2026-12-08: CLI11 took 0x20 and " 32").
+      {"--width 0x20 --height 32",
+       "--width: a whole number in 16..2048 (decimal digits), got '0x20'"},
+      {"--io-threads 1e1", "--io-threads: a whole number in 1..16 (decimal digits), got '1e1'"},
       {"--no-such-option", "no-such-option"},
   };
   for (const auto& [args, text] : bad) {
