@@ -223,6 +223,8 @@ class Device {
   Error upload_vertices(std::uint32_t first, std::span<const Vertex> vertices);
   Error upload_indices(std::uint32_t first, std::span<const std::uint32_t> indices);
   Error clear(Rgb8 colour);  // colour, depth = far, counts = 0, counters reset (not frames)
+  // kOutOfRange when a vertex its indices name leaves Q15.16 under the model-view and projection
+  // (vertices it does not name are not its concern, though the vertex cache transforms them).
   Error draw(const DrawCmd& cmd);
   Error end_frame();
 

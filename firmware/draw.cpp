@@ -348,14 +348,17 @@ Error Device::draw(const DrawCmd& cmd) {
   const std::uint32_t* idx = region<std::uint32_t>(state_.off_indices) + cmd.first;
   for (std::uint32_t i = 0; i < cmd.count; ++i)
     if (idx[i] >= state_.vertex_count) return fail(Error::kIndexOutOfRange);
-  // Every position must transform before memory is touched (a failing draw changes nothing):
-  // proven for all of them at once from the uploaded coordinates' bound where it can be, else
-  // checked vertex by vertex.
+  // Every position the draw's indices name must transform before memory is touched (a failing
+  // draw changes nothing): proven for all uploaded vertices at once from their coordinates' bound
+  // where it can be, else checked index by index. Vertices the draw does not name are not its
+  // concern: the driver keeps every mesh in one buffer, each drawn with its own model-view, and a
+  // mesh far out refused the draw of a mesh near the origin (found by review, 2026-12-08). The
+  // cache below transforms those too; a failed transform leaves values it never reads.
   const Vertex* verts = region<Vertex>(state_.off_vertices);
   if (!transform_cannot_fail(state_.modelview, state_.projection, state_.coordinate_bound))
-    for (std::uint32_t i = 0; i < state_.vertex_count; ++i) {
+    for (std::uint32_t i = 0; i < cmd.count; ++i) {
       ClipVertex tmp;
-      if (!transform_position(state_.modelview, state_.projection, verts[i], tmp))
+      if (!transform_position(state_.modelview, state_.projection, verts[idx[i]], tmp))
         return fail(Error::kOutOfRange);
     }
   // The vertex cache: every position, clip mask and (inside the view) projection now, each

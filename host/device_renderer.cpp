@@ -324,8 +324,8 @@ void DeviceRenderer::set_scene(const Scene& scene) {
   loaded_ = true;
 }
 
-// The scene is checked unrotated (set_scene); a turn can take a vertex out of the device's range
-// (a draw's only refusal once its indices are in range), which the device finds per frame.
+// set_scene checks the model-views unrotated; a vertex's transform, at any turn, is checked by
+// the draw that names it (a draw's only refusal once its indices are in range), per frame.
 void DeviceRenderer::refused_frame(const StreamError& e, double rotation) const {
   std::string why = "the device refused the frame at " + at_rotation(rotation) + ": " + e.what();
   if (e.opcode == static_cast<std::uint32_t>(fw::Opcode::kDraw) &&

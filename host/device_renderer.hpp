@@ -75,8 +75,8 @@ class DeviceRenderer {
 
   // Renders with the scene's objects rotated by `model_rotation_radians` about the world y axis
   // (the lights stay put, so the highlights move: the server's animation). A frame the device
-  // refuses (set_scene checks the scene unturned) throws SceneError naming the scene and the
-  // rotation.
+  // refuses (set_scene checks the model-views unturned; the vertices' transforms are checked by
+  // each frame's draws) throws SceneError naming the scene and the rotation.
   DeviceFrame render(double model_rotation_radians = 0.0);
   // The double-precision reference of the same frame (host/reference.hpp).
   ReferenceFrame render_reference(double model_rotation_radians = 0.0,

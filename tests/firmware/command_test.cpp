@@ -2,9 +2,11 @@
 // exactly as it was: DeviceState, counters and every byte of device memory are compared.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "helpers.hpp"
 
@@ -206,6 +208,44 @@ TEST(Commands, BadIndexAndTransformOverflowRefuseTheDraw) {
   ASSERT_EQ(rig.dev.set_modelview(big), Error::kOk);
   before = snapshot(rig);
   EXPECT_EQ(rig.draw_all(rig.mesh), Error::kOutOfRange);
+  const Snapshot after = snapshot(rig);
+  EXPECT_TRUE(before.memory == after.memory);
+  EXPECT_TRUE(before.state == after.state);
+  EXPECT_TRUE(before.counters == after.counters);
+}
+
+// A draw is refused only for the vertices its indices name. The driver keeps every mesh in one
+// buffer, each drawn with its own model-view, so a vertex far out that only another mesh's draw
+// names refused this one: two meshes that each rendered alone failed together (found by review,
+// 2026-12-08).
+TEST(Commands, AVertexTheDrawDoesNotNameDoesNotRefuseIt) {
+  // Scaled by 2.5, the vertex at x = 16000 leaves Q15.16 in eye space (40000 > 2^15).
+  const Mat4 mv =
+      to_mat4(glm::scale(glm::translate(glm::dmat4(1), glm::dvec3(0, 0, -6)), glm::dvec3(2.5)));
+  const Vertex far = vertex(glm::dvec3(16000, 0, 0), glm::dvec3(0, 0, 1));
+  const auto frame = [&](bool far_vertex) {
+    Loaded rig;
+    Rig::check(rig.dev.set_modelview(mv));
+    if (far_vertex)
+      Rig::check(rig.dev.upload_vertices(static_cast<std::uint32_t>(rig.mesh.positions.size()),
+                                         std::vector<Vertex>{far}));
+    Rig::check(rig.dev.clear(Rgb8{0, 0, 0}));
+    EXPECT_EQ(rig.draw_all(rig.mesh), Error::kOk) << (far_vertex ? "with" : "without");
+    const FramebufferView fb = rig.dev.framebuffer();
+    return std::vector<std::uint8_t>(fb.data, fb.data + std::size_t{fb.stride} * fb.height);
+  };
+  const std::vector<std::uint8_t> with = frame(true), without = frame(false);
+  EXPECT_TRUE(with == without);
+  EXPECT_TRUE(std::any_of(with.begin(), with.end(), [](std::uint8_t b) { return b != 0; }));
+  // A draw that names it is refused, and changes nothing.
+  Loaded rig;
+  ASSERT_EQ(rig.dev.set_modelview(mv), Error::kOk);
+  const auto far_id = static_cast<std::uint32_t>(rig.mesh.positions.size());
+  ASSERT_EQ(rig.dev.upload_vertices(far_id, std::vector<Vertex>{far}), Error::kOk);
+  const std::vector<std::uint32_t> tri{0, 1, far_id};
+  ASSERT_EQ(rig.dev.upload_indices(0, tri), Error::kOk);
+  const Snapshot before = snapshot(rig);
+  EXPECT_EQ(rig.dev.draw(DrawCmd{0, 3}), Error::kOutOfRange);
   const Snapshot after = snapshot(rig);
   EXPECT_TRUE(before.memory == after.memory);
   EXPECT_TRUE(before.state == after.state);

@@ -81,6 +81,24 @@ refused "orbit.json: the model-view at rotation 90 degrees does not fit the devi
 "$tp" render "$work/orbit.json" --size 64x48 -o "$work/ok.png" >/dev/null ||
   { echo "FAIL: the orbit unturned refused"; fail=1; }
 
+# Two meshes that each render alone render together. The driver keeps every mesh's vertices in
+# one buffer, and a draw was refused for a vertex of another mesh that its own model-view would
+# take out of range: here the quad's corners (10,000 units, scaled down in its transform) under
+# the sphere's scale of 4 (found by review, 2026-12-08).
+cat > "$work/two.json" <<'JSON'
+{"camera": {"type": "orthographic", "extents": [-6, 6, -6, 6], "near": -10, "far": 10},
+ "lights": [{"type": "point", "position": [1.8, 2.2, 2.8]}],
+ "material": {"colour": [0.2, 0.4, 1], "ka": 0.1, "kd": 0.6, "ks": 0.4, "n": 20},
+ "meshes": [{"generator": "quad", "params": {"half_size": 10000},
+             "transform": {"scale": 0.0004, "translate": [-2, 0, 0]}},
+            {"generator": "octa-sphere", "params": {"subdivisions": 1},
+             "transform": {"scale": 4, "translate": [2, 0, 0]}}]}
+JSON
+out=$("$tp" render "$work/two.json" --size 64x64 --compare -o "$work/two.png" 2>&1) &&
+  grep -qE "^pixels compared: +[1-9]" <<<"$out" &&
+  grep -qE "^only in (first|second): +0$" <<<"$out" ||
+  { echo "FAIL: two meshes, each fine alone, together: '$out'"; fail=1; }
+
 # exits STATUS TEXT ARGS...: the command must exit with STATUS and print TEXT (found by review,
 # 2026-12-06: CLI11's own codes came through, 104 to 114, and stress took -1, 2^64, "" and 0x10
 # as seeds; a JSON file lost to a full disk exited 0).
