@@ -64,7 +64,8 @@ Scene load_named_scene(const std::string& name, const std::optional<Size>& resol
   return scene;
 }
 
-// "%.4f" of a measure, or "–" where no pixel is covered in both images (Comparison::measured).
+// A measure printed by `format`, or "–" where no pixel is covered in both images
+// (Comparison::measured).
 std::string cell(const Comparison& c, const char* format, double value) {
   if (!c.measured()) return "–";
   char text[32];

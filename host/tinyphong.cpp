@@ -623,8 +623,18 @@ int run(int argc, char** argv) {
   add_stress_command(app, stress_cli);
 
   if (const std::optional<int> status = parse_options(app, argc, argv)) return *status;
-  const ReportAwayFromFiles report({render_out, ref_out, ref_exr, cmp_opts.diff, rec.out, rep_out,
-                                    stress_cli.json, stress_cli.bounds_out});
+  // The files the chosen command writes (not the other commands' defaults: `methods > out.png`
+  // would have sent the list to standard error).
+  const std::vector<std::string> outputs =
+      *render      ? std::vector<std::string>{render_out}
+      : *reference ? std::vector<std::string>{ref_out, ref_exr}
+      : *cmp       ? std::vector<std::string>{cmp_opts.diff}
+      : *record    ? std::vector<std::string>{rec.out}
+      : *replay    ? std::vector<std::string>{rep_out}
+      : app.got_subcommand("stress")
+          ? std::vector<std::string>{stress_cli.json, stress_cli.bounds_out}
+          : std::vector<std::string>{};
+  const ReportAwayFromFiles report(outputs);
   try {
     if (*render) return run_render(render_opts, render_out, render_compare);
     if (*reference) return run_reference(ref_opts, ref_out, ref_exr, ref_angular);

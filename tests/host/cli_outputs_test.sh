@@ -224,6 +224,11 @@ hash_pipe=$("$tp" record scene.json --size 64x48 -o /dev/stdout 2>/dev/null |
   "$tp" replay /dev/stdin --hash | cut -d' ' -f1) || true
 [ -n "$hash_file" ] && [ "$hash_pipe" = "$hash_file" ] ||
   { echo "FAIL: record -o /dev/stdout | replay /dev/stdin: '$hash_pipe' vs '$hash_file'"; fail=1; }
+# Only the chosen command's own outputs count: `methods > out.png`, render's default output,
+# keeps the list on standard output.
+"$tp" methods > out.png 2>methods.err && grep -q "^kb-adaptive" out.png && [ ! -s methods.err ] ||
+  { echo "FAIL: methods > out.png: the list went elsewhere"; fail=1; }
+rm -f out.png methods.err
 "$tp" record mesh.json scene.json --size 64x48 --dir dir >/dev/null &&
   [ -s dir/mesh.tpcmd ] && [ -s dir/scene.tpcmd ] || { echo "FAIL: record --dir"; fail=1; }
 "$tp" compare a.png b.png --diff diff.png >/dev/null && [ -s diff.png ] ||
