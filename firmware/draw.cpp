@@ -353,7 +353,8 @@ Error Device::draw(const DrawCmd& cmd) {
   // where it can be, else checked index by index. Vertices the draw does not name are not its
   // concern: the driver keeps every mesh in one buffer, each drawn with its own model-view, and a
   // mesh far out refused the draw of a mesh near the origin (found by review, 2026-12-08). The
-  // cache below transforms those too; a failed transform leaves values it never reads.
+  // cache below transforms those too; what a failed transform leaves there is int32 values that
+  // the clip test and projection take safely, and that no triangle of this draw reads.
   const Vertex* verts = region<Vertex>(state_.off_vertices);
   if (!transform_cannot_fail(state_.modelview, state_.projection, state_.coordinate_bound))
     for (std::uint32_t i = 0; i < cmd.count; ++i) {

@@ -188,7 +188,7 @@ int clip_crossing(const ClipVertex in[3], ClipVertex out[kMaxClipVertices]) {
 
 ShadeVertex project(const ClipVertex& v, std::int32_t width, std::int32_t height) {
   const wide x = v.clip[0], y = v.clip[1], w = v.clip[3];
-  // |x|, |y| <= 3 w (guard band), w < 2^31: numerators below 4 * 2^31 * 8 * 4096 = 2^48.
+  // |x|, |y| <= 64 w (guard band), w < 2^31: numerators below 65 * 2^31 * 8 * 4096 < 2^53.
   ShadeVertex s;
   s.sx = static_cast<std::int32_t>(
       fx::div<fx::int_q>(fx::int_q::from_raw((x + w) * 8 * width), fx::int_q::from_raw(w)).raw());

@@ -3,8 +3,8 @@
 // Formats: matrices, positions, eye and clip coordinates are Q15.16 (int32); normals q1_30.
 // Input bound (checked by the device): matrix entries and vertex coordinates below 2^14 in
 // magnitude, so each raw product is below 2^60 and a four-term sum below 2^62. Transformed
-// eye and clip coordinates that do not fit Q15.16 make transform_vertex fail (the draw is
-// refused before any pixel is written).
+// eye and clip coordinates that do not fit Q15.16 make transform_vertex fail (a draw that names
+// the vertex is refused before any pixel is written).
 #pragma once
 
 #include <cstdint>

@@ -66,7 +66,7 @@ constexpr Known kKnown[] = {
     {"ab-min", " kb kb-noskip kb-decomposition ",
      "(a, b) with ab < 2^-14: cos^n coefficients invalid, the specular term is dropped"},
     {"ab-wide", " kb kb-noskip kb-decomposition ",
-     "the given (a, b) replace the fit: f is what was asked for, far from cos^20"},
+     "(1e-6, pi/2) has ab < 2^-14 too: as ab-min, the specular term is dropped"},
     {"ab-max", " kb kb-noskip kb-decomposition ", "the given (a, b) replace the fit"},
     {"terminator-exact", " kb kb-noskip kb-decomposition ",
      "diffuse is f(n = 1), not max(0, cos): nonzero at N·L = 0 (KUIJK-BLAKE.md)"},

@@ -69,8 +69,7 @@ int main(int argc, char** argv) {
       "--allow-host", opt.allow_hosts,
       "extra host name accepted in Host/Origin (besides 127.0.0.1, localhost, [::1], --bind)");
   app.add_option("--port", opt.port, "TCP port (0 = pick a free one)")
-      ->transform(tp::host::whole_number(
-          0, 65535))  // (beyond, CLI11 said "At Most 1 required but received 2")
+      ->transform(tp::host::whole_number(0, 65535))
       ->capture_default_str();
   app.add_option("--scene", scene, "scene name (scenes/<name>.json)")->capture_default_str();
   app.add_option("--scenes-dir", scenes_dir, "directory of the shipped scenes")

@@ -348,8 +348,10 @@ function setValue(id, v, force = false) {
 // What a control shows of a state message.
 function controlValue(s, id) {
   // (a, b) to four significant digits: without use_ab the pair n gives, and a scene's (1e-6, 2e-6)
-  // showed as 0.0000, which "set exponent" then sent back and the server refused.
-  if (id === 'a' || id === 'b') return String(Number(Number(s[id]).toPrecision(4)));
+  // showed as 0.0000, which "set exponent" then sent back and the server refused. Held at or
+  // below π/2, the server's bound: the pairs n = 1 and 2 give have b above it, and π/2 itself
+  // rounds above it.
+  if (id === 'a' || id === 'b') return String(Math.min(Number(Number(s[id]).toPrecision(4)), 1.570796));
   if (id === 'color') return toHex(s.color);
   return s[id];
 }

@@ -268,9 +268,30 @@ try {
       r.request === 'set_exponent').length, window.tp.state.a]);
   check(Number(again[0]) === 1e-6 && Number(again[1]) === 2e-6 && again[2] === 0 && again[3] === 1e-6,
         `(a, b) = (1e-6, 2e-6) shows as (${again[0]}, ${again[1]}) and applies again unrefused`);
+  // With n = 1 the device's pair has b = 1.73, above π/2, the server's bound: the field holds it at
+  // 1.570796, so (a, b) from the fields is taken, not refused (found by review, 2026-12-08). Then
+  // back to the scene's n.
+  const nBefore = await page.evaluate(() => window.tp.state.n);
   await page.check('#use-n');
+  await page.fill('#n', '1');
   await page.click('#apply-exp');
-  await page.waitForFunction(() => !window.tp.state.use_ab, null, { timeout: 10000 });
+  await page.waitForFunction(() => !window.tp.state.use_ab && window.tp.state.n === 1, null,
+                             { timeout: 10000 });
+  await page.click('#ka'); // the focus off the exponent's fields
+  await page.check('#use-ab');
+  await page.evaluate(() => { window.tp.replies.length = 0; });
+  await page.click('#apply-exp');
+  await page.waitForFunction(() => window.tp.replies.some((r) => r.request === 'set_exponent'), null,
+                             { timeout: 10000 });
+  const top = await page.evaluate(() => [document.getElementById('b').value,
+    window.tp.replies.some((r) => r.type === 'error'), window.tp.state.use_ab, window.tp.state.b]);
+  check(Number(top[0]) === 1.570796 && !top[1] && top[2] && top[3] === 1.570796,
+        `n = 1's b shows as ${top[0]} and (a, b) from the fields applies unrefused`);
+  await page.check('#use-n');
+  await page.fill('#n', String(nBefore));
+  await page.click('#apply-exp');
+  await page.waitForFunction((n) => !window.tp.state.use_ab && window.tp.state.n === n, nBefore,
+                             { timeout: 10000 });
 
   // A light's row keeps a colour above 1 and its exact value: "set" to move the light sends it back
   // unchanged (a colour picker alone holds 8 bits in [0, 1]).

@@ -250,6 +250,11 @@ TEST(Commands, AVertexTheDrawDoesNotNameDoesNotRefuseIt) {
   EXPECT_TRUE(before.memory == after.memory);
   EXPECT_TRUE(before.state == after.state);
   EXPECT_TRUE(before.counters == after.counters);
+  // Under a model-view that keeps it in range the same draw is taken: every draw transforms its
+  // vertices anew (eye x 16000, clip x about 24,400: within Q15.16).
+  ASSERT_EQ(rig.dev.set_modelview(to_mat4(glm::translate(glm::dmat4(1), glm::dvec3(0, 0, -6)))),
+            Error::kOk);
+  EXPECT_EQ(rig.dev.draw(DrawCmd{0, 3}), Error::kOk);
 }
 
 // An empty upload at or below the count changes nothing, typed or streamed: the draw still
