@@ -281,12 +281,16 @@ try {
   await page.check('#use-ab');
   await page.evaluate(() => { window.tp.replies.length = 0; });
   await page.click('#apply-exp');
-  await page.waitForFunction(() => window.tp.replies.some((r) => r.request === 'set_exponent'), null,
+  // The reply can come before the state that shows the change (the next frame's): wait for the
+  // state, or for a refusal, so that a late state cannot flip the n / (a, b) choice below.
+  await page.waitForFunction(() => window.tp.replies.some((r) => r.type === 'error') ||
+                             (window.tp.state.use_ab && window.tp.state.b === 1.570796), null,
                              { timeout: 10000 });
   const top = await page.evaluate(() => [document.getElementById('b').value,
-    window.tp.replies.some((r) => r.type === 'error'), window.tp.state.use_ab, window.tp.state.b]);
-  check(Number(top[0]) === 1.570796 && !top[1] && top[2] && top[3] === 1.570796,
-        `n = 1's b shows as ${top[0]} and (a, b) from the fields applies unrefused`);
+    window.tp.replies.filter((r) => r.type === 'error').map((r) => r.error), window.tp.state.use_ab,
+    window.tp.state.b]);
+  check(Number(top[0]) === 1.570796 && top[1].length === 0 && top[2] && top[3] === 1.570796,
+        `n = 1's b shows as ${top[0]} and (a, b) from the fields applies unrefused (${JSON.stringify(top)})`);
   await page.check('#use-n');
   await page.fill('#n', String(nBefore));
   await page.click('#apply-exp');
